@@ -1,0 +1,307 @@
+//! The scene: what a file said, flattened into world space.
+//!
+//! A [`Scene`] is plain data with `u32` ids: one vertex pool (positions,
+//! optional shading normals, two UV sets), triangles that index it, materials
+//! in the glTF metallic-roughness form, textures decoded to linear RGB,
+//! punctual lights and cameras. Policy (which terms, which light mode, BRDF
+//! override) lives in [`crate::settings::RenderSettings`]; derived structures
+//! (BVH, light table) are built from the scene, never cached inside it.
+//!
+//! Units follow the course (`docs/conventions.md`): metres, emitted radiance
+//! in W·m⁻²·sr⁻¹, radiant intensity in W·sr⁻¹, irradiance in W·m⁻².
+
+pub mod builtin;
+pub mod gltf;
+pub mod texture;
+
+use glam::{Affine3A, Vec2, Vec3};
+use serde::{Deserialize, Serialize};
+
+pub use texture::{Texture, TextureRef, WrapMode};
+
+/// Index meaning "none" in `u32` id fields.
+pub const NO_ID: u32 = u32::MAX;
+
+/// Everything the renderer needs to know about a scene, in world space.
+#[derive(Clone, Debug, Default)]
+pub struct Scene {
+    /// A name for messages (file name, or the built-in scene's name).
+    pub name: String,
+    pub positions: Vec<Vec3>,
+    /// Per-vertex shading normals in world space, unit length. Same length
+    /// as `positions`; only read for triangles with `smooth == true`.
+    pub normals: Vec<Vec3>,
+    /// Texture coordinates, set 0 and set 1 (zero where the file had none).
+    pub uv0: Vec<Vec2>,
+    pub uv1: Vec<Vec2>,
+    pub triangles: Vec<Triangle>,
+    /// One entry per mesh instance (glTF node × primitive), for selection and messages.
+    pub objects: Vec<Object>,
+    pub materials: Vec<Material>,
+    pub textures: Vec<Texture>,
+    pub lights: Vec<PunctualLight>,
+    pub cameras: Vec<Camera>,
+    /// Non-fatal problems met while loading (unsupported features skipped, …).
+    pub warnings: Vec<String>,
+}
+
+/// A triangle of the scene; vertices are indices into the scene's vertex pool,
+/// counter-clockwise seen from the front (glTF winding).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Triangle {
+    pub vertices: [u32; 3],
+    pub material: u32,
+    pub object: u32,
+    /// Interpolate the vertex normals; false means use the geometric normal.
+    pub smooth: bool,
+}
+
+/// A mesh instance: what a click in the viewport selects.
+#[derive(Clone, Debug, Default)]
+pub struct Object {
+    pub name: String,
+    pub material: u32,
+}
+
+/// A glTF metallic-roughness material, as authored. [`Material::brdf_model`]
+/// maps it onto the course's three models.
+#[derive(Clone, Debug)]
+pub struct Material {
+    pub name: String,
+    /// Linear RGB base colour factor.
+    pub base_color: Vec3,
+    pub base_color_texture: Option<TextureRef>,
+    pub metallic: f32,
+    pub roughness: f32,
+    /// Emitted radiance (W·m⁻²·sr⁻¹ per channel): emissiveFactor × emissive strength.
+    pub emission: Vec3,
+    pub emission_texture: Option<TextureRef>,
+    /// Emits and is seen from both faces (glTF `doubleSided`).
+    pub double_sided: bool,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        // the glTF default material: white, metallic 1, roughness 1
+        Self {
+            name: "default".into(),
+            base_color: Vec3::ONE,
+            base_color_texture: None,
+            metallic: 1.0,
+            roughness: 1.0,
+            emission: Vec3::ZERO,
+            emission_texture: None,
+            double_sided: false,
+        }
+    }
+}
+
+impl Material {
+    /// A matte (Lambert) material of albedo `albedo`.
+    pub fn lambert(name: &str, albedo: Vec3) -> Self {
+        Self {
+            name: name.into(),
+            base_color: albedo,
+            metallic: 0.0,
+            roughness: 1.0,
+            ..Self::default()
+        }
+    }
+
+    /// A perfect mirror of reflectance `reflectance`.
+    pub fn mirror(name: &str, reflectance: Vec3) -> Self {
+        Self {
+            name: name.into(),
+            base_color: reflectance,
+            metallic: 1.0,
+            roughness: 0.0,
+            ..Self::default()
+        }
+    }
+
+    /// A black Lambert surface emitting radiance `radiance` from its front face.
+    pub fn emitter(name: &str, radiance: Vec3) -> Self {
+        Self {
+            emission: radiance,
+            ..Self::lambert(name, Vec3::ZERO)
+        }
+    }
+
+    /// Whether any part of the surface can emit light.
+    pub fn is_emissive(&self) -> bool {
+        self.emission.max_element() > 0.0
+    }
+
+    /// The course's mapping of metallic-roughness onto the three models.
+    pub fn brdf_model(&self) -> BrdfModel {
+        if self.metallic <= 0.0 && self.roughness >= 1.0 {
+            BrdfModel::Lambert
+        } else if self.metallic >= 1.0 && self.roughness <= 0.0 {
+            BrdfModel::Mirror
+        } else {
+            let alpha = (self.roughness * self.roughness).max(1e-4);
+            let exponent = (2.0 / (alpha * alpha) - 2.0).clamp(0.0, 1e6);
+            BrdfModel::Phong { exponent }
+        }
+    }
+}
+
+/// Which of the course's reflection models a material uses.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BrdfModel {
+    Lambert,
+    Phong { exponent: f32 },
+    Mirror,
+}
+
+/// A `KHR_lights_punctual` light. `intensity` is `color × intensity`: radiant
+/// intensity (W·sr⁻¹) for point and spot lights, irradiance (W·m⁻²) for
+/// directional lights.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PunctualLight {
+    pub name: String,
+    pub kind: PunctualKind,
+    pub position: Vec3,
+    /// Unit direction the light points to (its node's −Z); unused for point lights.
+    pub direction: Vec3,
+    pub intensity: Vec3,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PunctualKind {
+    Point,
+    /// Cone half-angles in radians, `0 ≤ inner < outer ≤ π/2`.
+    Spot {
+        inner_cone_angle: f32,
+        outer_cone_angle: f32,
+    },
+    Directional,
+}
+
+/// A camera: `world_from_camera` places it; it looks down its −Z with +Y up.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Camera {
+    pub name: String,
+    pub world_from_camera: Affine3A,
+    pub projection: Projection,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Projection {
+    /// Vertical field of view in radians.
+    Perspective { yfov: f32 },
+    /// Half the visible height in metres (glTF `ymag`).
+    Orthographic { half_height: f32 },
+}
+
+/// Axis-aligned bounds of a set of points.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds {
+    pub min: Vec3,
+    pub max: Vec3,
+}
+
+impl Bounds {
+    pub const EMPTY: Bounds = Bounds {
+        min: Vec3::INFINITY,
+        max: Vec3::NEG_INFINITY,
+    };
+
+    pub fn grow(&mut self, p: Vec3) {
+        self.min = self.min.min(p);
+        self.max = self.max.max(p);
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.min.cmpgt(self.max).any()
+    }
+
+    pub fn diagonal(&self) -> f32 {
+        if self.is_empty() {
+            0.0
+        } else {
+            (self.max - self.min).length()
+        }
+    }
+
+    pub fn center(&self) -> Vec3 {
+        0.5 * (self.min + self.max)
+    }
+}
+
+impl Scene {
+    /// Bounds of the triangles and punctual light positions (not directional lights).
+    pub fn bounds(&self) -> Bounds {
+        let mut bounds = Bounds::EMPTY;
+        for t in &self.triangles {
+            for &v in &t.vertices {
+                bounds.grow(self.positions[v as usize]);
+            }
+        }
+        for l in &self.lights {
+            if l.kind != PunctualKind::Directional {
+                bounds.grow(l.position);
+            }
+        }
+        bounds
+    }
+
+    /// The camera a render uses: the scene's first, or one framing the bounds.
+    pub fn default_camera(&self) -> Camera {
+        self.cameras
+            .first()
+            .cloned()
+            .unwrap_or_else(|| framing_camera(self.bounds()))
+    }
+
+    /// Adds a material and returns its id.
+    pub fn add_material(&mut self, material: Material) -> u32 {
+        self.materials.push(material);
+        (self.materials.len() - 1) as u32
+    }
+
+    /// Adds an object made of flat (geometric-normal) triangles and returns its id.
+    /// `triangles` index `positions`, counter-clockwise from the front.
+    pub fn add_mesh(
+        &mut self,
+        name: &str,
+        material: u32,
+        positions: &[Vec3],
+        triangles: &[[u32; 3]],
+    ) -> u32 {
+        let object = self.objects.len() as u32;
+        self.objects.push(Object {
+            name: name.into(),
+            material,
+        });
+        let base = self.positions.len() as u32;
+        self.positions.extend_from_slice(positions);
+        self.normals.extend(positions.iter().map(|_| Vec3::Z));
+        self.uv0.extend(positions.iter().map(|_| Vec2::ZERO));
+        self.uv1.extend(positions.iter().map(|_| Vec2::ZERO));
+        self.triangles.extend(triangles.iter().map(|t| Triangle {
+            vertices: [t[0] + base, t[1] + base, t[2] + base],
+            material,
+            object,
+            smooth: false,
+        }));
+        object
+    }
+}
+
+/// A camera placed on +Z of the bounds' centre, framing their bounding sphere
+/// with a 45° vertical field of view.
+pub fn framing_camera(bounds: Bounds) -> Camera {
+    let yfov = 45f32.to_radians();
+    let (center, radius) = if bounds.is_empty() {
+        (Vec3::ZERO, 1.0)
+    } else {
+        (bounds.center(), (0.5 * bounds.diagonal()).max(1e-6))
+    };
+    let distance = radius / (0.5 * yfov).sin();
+    Camera {
+        name: "framing".into(),
+        world_from_camera: Affine3A::from_translation(center + Vec3::Z * distance),
+        projection: Projection::Perspective { yfov },
+    }
+}
