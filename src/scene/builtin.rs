@@ -1,1 +1,119 @@
-//! Built-in scenes.
+//! Built-in scenes: the Cornell box (embedded glTF) and analytic test scenes
+//! whose answers are known in closed form.
+
+use std::path::Path;
+
+use glam::{Affine3A, Vec3};
+
+use super::{Camera, Material, Projection, PunctualKind, PunctualLight, Scene};
+use crate::error::SceneError;
+
+/// The Cornell box from the published measurements, in metres.
+const CORNELL_GLTF: &[u8] = include_bytes!("../../assets/cornell-box.gltf");
+
+/// Names of the built-in scenes.
+pub const NAMES: [&str; 1] = ["cornell"];
+
+/// The built-in Cornell box.
+pub fn cornell() -> Scene {
+    super::gltf::load_slice(CORNELL_GLTF, "cornell", None).expect("the embedded Cornell box loads")
+}
+
+/// A scene by name (`cornell`) or by path to a `.gltf`/`.glb` file.
+pub fn load(spec: &str) -> Result<Scene, SceneError> {
+    match spec {
+        "cornell" => Ok(cornell()),
+        path => super::gltf::load(Path::new(path)),
+    }
+}
+
+/// A UV sphere of `rings × segments` quads (two triangles each, poles as fans),
+/// counter-clockwise seen from outside, or from inside if `inward`.
+pub fn uv_sphere(
+    center: Vec3,
+    radius: f32,
+    segments: u32,
+    rings: u32,
+    inward: bool,
+) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let mut positions = Vec::new();
+    for ring in 0..=rings {
+        let theta = std::f32::consts::PI * ring as f32 / rings as f32;
+        for segment in 0..segments {
+            let phi = std::f32::consts::TAU * segment as f32 / segments as f32;
+            let (st, ct) = theta.sin_cos();
+            let (sp, cp) = phi.sin_cos();
+            // exact poles so that the fans close the mesh
+            let st = if ring == 0 || ring == rings { 0.0 } else { st };
+            positions.push(center + radius * Vec3::new(st * cp, ct, st * sp));
+        }
+    }
+    let index = |ring: u32, segment: u32| ring * segments + segment % segments;
+    let mut triangles = Vec::new();
+    for ring in 0..rings {
+        for segment in 0..segments {
+            let (a, b) = (index(ring, segment), index(ring, segment + 1));
+            let (c, d) = (index(ring + 1, segment), index(ring + 1, segment + 1));
+            // outward winding: (a, b, c) seen from outside is counter-clockwise
+            let mut quad = vec![];
+            if ring != 0 {
+                quad.push([a, b, d]);
+            }
+            if ring != rings - 1 {
+                quad.push([a, d, c]);
+            }
+            for t in quad {
+                triangles.push(if inward { [t[0], t[2], t[1]] } else { t });
+            }
+        }
+    }
+    (positions, triangles)
+}
+
+/// The furnace: the camera at the centre of a closed unit sphere whose inner
+/// surface is Lambertian of albedo `albedo` and emits radiance `emission`.
+/// Every term has a closed form: L_k = albedoᵏ · emission.
+pub fn furnace(albedo: f32, emission: f32) -> Scene {
+    let mut scene = Scene {
+        name: "furnace".into(),
+        ..Scene::default()
+    };
+    let material = scene.add_material(Material {
+        emission: Vec3::splat(emission),
+        ..Material::lambert("furnace wall", Vec3::splat(albedo))
+    });
+    let (positions, triangles) = uv_sphere(Vec3::ZERO, 1.0, 48, 24, true);
+    scene.add_mesh("sphere", material, &positions, &triangles);
+    scene.cameras.push(Camera {
+        name: "centre".into(),
+        world_from_camera: Affine3A::IDENTITY,
+        projection: Projection::Perspective { yfov: 1.2 },
+    });
+    scene
+}
+
+/// A point light of intensity `intensity` at the centre of a closed sphere of
+/// radius `radius`, Lambertian of albedo `albedo`, seen from the centre.
+/// L1 = albedo · I / (π R²) everywhere, and L2 = albedo · L1.
+pub fn point_in_sphere(albedo: f32, intensity: f32, radius: f32) -> Scene {
+    let mut scene = Scene {
+        name: "point in sphere".into(),
+        ..Scene::default()
+    };
+    let material = scene.add_material(Material::lambert("wall", Vec3::splat(albedo)));
+    let (positions, triangles) = uv_sphere(Vec3::ZERO, radius, 256, 128, true);
+    scene.add_mesh("sphere", material, &positions, &triangles);
+    scene.lights.push(PunctualLight {
+        name: "point".into(),
+        kind: PunctualKind::Point,
+        position: Vec3::ZERO,
+        direction: -Vec3::Z,
+        intensity: Vec3::splat(intensity),
+    });
+    scene.cameras.push(Camera {
+        name: "centre".into(),
+        world_from_camera: Affine3A::IDENTITY,
+        projection: Projection::Perspective { yfov: 1.2 },
+    });
+    scene
+}

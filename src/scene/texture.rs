@@ -7,6 +7,8 @@
 
 use glam::{Vec2, Vec3};
 
+pub use crate::color::{linear_to_srgb, srgb_to_linear};
+
 /// How coordinates outside [0, 1] fold back in (glTF sampler wrap modes).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum WrapMode {
@@ -25,7 +27,11 @@ impl WrapMode {
             WrapMode::ClampToEdge => i.clamp(0, n - 1) as u32,
             WrapMode::MirroredRepeat => {
                 let period = i.rem_euclid(2 * n);
-                (if period < n { period } else { 2 * n - 1 - period }) as u32
+                (if period < n {
+                    period
+                } else {
+                    2 * n - 1 - period
+                }) as u32
             }
         }
     }
@@ -99,25 +105,6 @@ impl Texture {
     }
 }
 
-/// The sRGB transfer function, decoded: 8-bit-style sRGB value in [0, 1] → linear.
-pub fn srgb_to_linear(c: f32) -> f32 {
-    if c <= 0.04045 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
-    }
-}
-
-/// The sRGB transfer function, encoded: linear → sRGB value in [0, 1] (input clamped).
-pub fn linear_to_srgb(c: f32) -> f32 {
-    let c = c.clamp(0.0, 1.0);
-    if c <= 0.003_130_8 {
-        c * 12.92
-    } else {
-        1.055 * c.powf(1.0 / 2.4) - 0.055
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -145,13 +132,5 @@ mod tests {
         assert_eq!(t.sample(Vec2::new(0.25, 0.5)), Vec3::ZERO);
         assert_eq!(t.sample(Vec2::new(0.75, 0.5)), Vec3::ONE);
         assert!((t.sample(Vec2::new(0.5, 0.5)) - Vec3::splat(0.5)).length() < 1e-6);
-    }
-
-    #[test]
-    fn srgb_round_trip() {
-        for i in 0..=255 {
-            let c = i as f32 / 255.0;
-            assert!((linear_to_srgb(srgb_to_linear(c)) - c).abs() < 1e-5);
-        }
     }
 }

@@ -1,0 +1,300 @@
+//! Ray queries against the scene: closest hit and occlusion.
+//!
+//! Triangles go into an `obvhs` compressed wide BVH (CWBVH8). Its traversal
+//! hands the closure an index into `bvh.primitive_indices`, so the triangle
+//! vertices are copied once, at build, in that order; the closure then reads
+//! them directly. The triangle test is our watertight one
+//! ([`crate::geometry::intersect_triangle`]), not obvhs's Möller–Trumbore.
+//! Sphere lights (point lights made extended) are few and are tested one by
+//! one after the BVH.
+//!
+//! The node test is ours too ([`intersect_node`]): obvhs's skips boxes closer
+//! than a fixed t = 10⁻⁴ and rounds its slab distances either way, so rays
+//! through the shared edges of two child boxes can miss both. Ours widens
+//! each slab interval by a bound on its rounding error (the quantised child
+//! planes are exact; the error comes from the ray's inverse direction and
+//! the two fused steps), so a box the ray touches is never skipped.
+
+use std::time::Duration;
+
+use glam::{UVec2, Vec3, Vec3A};
+use obvhs::cwbvh::node::{CwBvhNode, extract_byte64};
+use obvhs::{BvhBuildParams, cwbvh::CwBvh, cwbvh::builder::build_cwbvh_from_tris};
+
+use crate::geometry::{Ray, TriangleHit, gamma, intersect_triangle};
+use crate::scene::Scene;
+
+/// An emitting sphere (a sphere light); `light` is its index in the light table.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sphere {
+    pub center: Vec3,
+    pub radius: f32,
+    pub light: u32,
+}
+
+/// What a ray hit first.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Hit {
+    /// A scene triangle (its index in `Scene::triangles`) at barycentrics (b0, b1, b2).
+    Triangle { t: f32, triangle: u32, b: Vec3 },
+    /// Sphere number `sphere` of [`Accel::spheres`].
+    Sphere { t: f32, sphere: u32 },
+}
+
+impl Hit {
+    pub fn t(&self) -> f32 {
+        match *self {
+            Hit::Triangle { t, .. } | Hit::Sphere { t, .. } => t,
+        }
+    }
+}
+
+/// The acceleration structure of one scene under one light mode.
+pub struct Accel {
+    bvh: CwBvh,
+    /// Vertices of each triangle, in BVH order.
+    vertices: Vec<[Vec3A; 3]>,
+    /// Scene triangle index of each BVH-ordered triangle.
+    scene_triangle: Vec<u32>,
+    pub spheres: Vec<Sphere>,
+}
+
+impl Accel {
+    /// Builds the BVH over the scene triangles for which `keep` is true, plus `spheres`.
+    pub fn build(scene: &Scene, keep: impl Fn(u32) -> bool, spheres: Vec<Sphere>) -> Self {
+        let kept: Vec<u32> = (0..scene.triangles.len() as u32)
+            .filter(|&i| keep(i))
+            .collect();
+        let corners = |i: u32| {
+            let t = &scene.triangles[i as usize];
+            t.vertices.map(|v| Vec3A::from(scene.positions[v as usize]))
+        };
+        let tris: Vec<obvhs::triangle::Triangle> = kept
+            .iter()
+            .map(|&i| {
+                let [v0, v1, v2] = corners(i);
+                obvhs::triangle::Triangle { v0, v1, v2 }
+            })
+            .collect();
+        let bvh = if tris.is_empty() {
+            CwBvh::default()
+        } else {
+            build_cwbvh_from_tris(
+                &tris,
+                BvhBuildParams::medium_build(),
+                &mut Duration::default(),
+            )
+        };
+        let scene_triangle: Vec<u32> = bvh
+            .primitive_indices
+            .iter()
+            .map(|&p| kept[p as usize])
+            .collect();
+        let vertices = scene_triangle.iter().map(|&i| corners(i)).collect();
+        Self {
+            bvh,
+            vertices,
+            scene_triangle,
+            spheres,
+        }
+    }
+
+    /// Number of triangles in the BVH.
+    pub fn triangle_count(&self) -> usize {
+        self.scene_triangle.len()
+    }
+
+    /// The ray in obvhs's form, with an exact inverse direction: obvhs's own
+    /// constructor replaces components below f32::EPSILON by ±1/EPSILON,
+    /// which moves slab distances and makes near-axis rays miss boxes. Only
+    /// components too small to invert (|d| < 1e-30) are nudged, to keep
+    /// 0·∞ out of the slab arithmetic.
+    fn obvhs_ray(ray: &Ray) -> obvhs::ray::Ray {
+        let direction = Vec3A::from(ray.direction);
+        let invertible = direction.abs().cmpge(Vec3A::splat(1e-30));
+        let safe = Vec3A::select(
+            invertible,
+            direction,
+            Vec3A::splat(1e-30).copysign(direction),
+        );
+        obvhs::ray::Ray {
+            origin: ray.origin.into(),
+            direction,
+            inv_direction: Vec3A::ONE / safe,
+            tmin: 0.0,
+            tmax: ray.t_max,
+        }
+    }
+
+    /// The first thing `ray` hits in (0, t_max), if any.
+    pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
+        let mut best: Option<(u32, TriangleHit)> = None;
+        if self.triangle_count() > 0 {
+            let mut traverse_ray = Self::obvhs_ray(ray);
+            let mut state = self.bvh.new_traversal(traverse_ray.direction);
+            let mut node;
+            obvhs::traverse!(
+                self.bvh,
+                node,
+                state,
+                intersect_node(node, &traverse_ray, state.oct_inv4),
+                {
+                    let id = state.primitive_id as usize;
+                    let [p0, p1, p2] = self.vertices[id];
+                    let (o, d) = (traverse_ray.origin, traverse_ray.direction);
+                    if let Some(hit) = intersect_triangle(o, d, traverse_ray.tmax, p0, p1, p2) {
+                        best = Some((id as u32, hit));
+                        traverse_ray.tmax = hit.t;
+                    }
+                }
+            );
+        }
+        let mut hit = best.map(|(id, h)| Hit::Triangle {
+            t: h.t,
+            triangle: self.scene_triangle[id as usize],
+            b: Vec3::new(h.b0, h.b1, h.b2),
+        });
+        let mut t_max = hit.map_or(ray.t_max, |h| h.t());
+        for (i, sphere) in self.spheres.iter().enumerate() {
+            if let Some(t) = intersect_sphere(ray, sphere, t_max) {
+                t_max = t;
+                hit = Some(Hit::Sphere {
+                    t,
+                    sphere: i as u32,
+                });
+            }
+        }
+        hit
+    }
+
+    /// Whether anything blocks `ray` in (0, t_max), ignoring sphere `skip_sphere` (if any).
+    pub fn occluded(&self, ray: &Ray, skip_sphere: Option<u32>) -> bool {
+        let blocked_by_sphere = self.spheres.iter().enumerate().any(|(i, s)| {
+            Some(i as u32) != skip_sphere && intersect_sphere(ray, s, ray.t_max).is_some()
+        });
+        if blocked_by_sphere {
+            return true;
+        }
+        if self.triangle_count() == 0 {
+            return false;
+        }
+        let ray = Self::obvhs_ray(ray);
+        let mut state = self.bvh.new_traversal(ray.direction);
+        let mut node;
+        let mut blocked = false;
+        'traversal: {
+            obvhs::traverse!(
+                self.bvh,
+                node,
+                state,
+                intersect_node(node, &ray, state.oct_inv4),
+                {
+                    let [p0, p1, p2] = self.vertices[state.primitive_id as usize];
+                    if intersect_triangle(ray.origin, ray.direction, ray.tmax, p0, p1, p2).is_some()
+                    {
+                        blocked = true;
+                        break 'traversal;
+                    }
+                }
+            );
+        }
+        blocked
+    }
+
+    /// Closest hit by testing every triangle and sphere: the reference the BVH is checked against.
+    pub fn brute_force_closest_hit(&self, ray: &Ray) -> Option<Hit> {
+        let (o, d) = (Vec3A::from(ray.origin), Vec3A::from(ray.direction));
+        let mut hit = None;
+        let mut t_max = ray.t_max;
+        for (id, [p0, p1, p2]) in self.vertices.iter().enumerate() {
+            if let Some(h) = intersect_triangle(o, d, t_max, *p0, *p1, *p2) {
+                t_max = h.t;
+                hit = Some(Hit::Triangle {
+                    t: h.t,
+                    triangle: self.scene_triangle[id],
+                    b: Vec3::new(h.b0, h.b1, h.b2),
+                });
+            }
+        }
+        for (i, sphere) in self.spheres.iter().enumerate() {
+            if let Some(t) = intersect_sphere(ray, sphere, t_max) {
+                t_max = t;
+                hit = Some(Hit::Sphere {
+                    t,
+                    sphere: i as u32,
+                });
+            }
+        }
+        hit
+    }
+}
+
+/// Nearest intersection of `ray` with the sphere's surface in (0, t_max).
+/// Uses the discriminant form of Hearn & Baker, accurate for distant spheres.
+pub fn intersect_sphere(ray: &Ray, sphere: &Sphere, t_max: f32) -> Option<f32> {
+    let length = ray.direction.length();
+    if length == 0.0 {
+        return None;
+    }
+    let d = ray.direction / length;
+    let f = ray.origin - sphere.center;
+    let b = -f.dot(d);
+    let closest = f + b * d;
+    let r2 = sphere.radius * sphere.radius;
+    let discriminant = r2 - closest.length_squared();
+    if discriminant < 0.0 {
+        return None;
+    }
+    let root = discriminant.sqrt();
+    let c = f.length_squared() - r2;
+    // numerically stable pair of roots
+    let q = b + root.copysign(b);
+    let (t0, t1) = if q == 0.0 { (0.0, 0.0) } else { (c / q, q) };
+    let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
+    let t_max_unit = t_max * length;
+    [near, far]
+        .into_iter()
+        .find(|&t| t > 0.0 && t < t_max_unit)
+        .map(|t| t / length)
+}
+
+/// Conservative ray test against the eight child boxes of a CWBVH node:
+/// returns obvhs's hit mask. Each slab distance `q·a + b` (q the exact
+/// quantised plane, a = extent/d, b = (p − o)/d) is widened by
+/// γ(6)·(|q·a| + |b|), which bounds the rounding of a, b and the sum.
+#[inline(always)]
+fn intersect_node(node: &CwBvhNode, ray: &obvhs::ray::Ray, oct_inv4: u32) -> u32 {
+    let a = node.compute_extent() * ray.inv_direction;
+    let b = (Vec3A::from(node.p) - ray.origin) * ray.inv_direction;
+    let (abs_a, abs_b) = (a.abs(), b.abs());
+    let slack = gamma(6);
+    let t_max_ray = ray.tmax * (1.0 + 2.0 * gamma(3));
+    // the sign of the inverse, not of the direction: −0.0 has a negative inverse
+    let negative = ray.inv_direction.cmplt(Vec3A::ZERO);
+    let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
+    let mut hit_mask = 0;
+    for child in 0..8 {
+        let lo = Vec3A::new(
+            node.child_min_x[child] as f32,
+            node.child_min_y[child] as f32,
+            node.child_min_z[child] as f32,
+        );
+        let hi = Vec3A::new(
+            node.child_max_x[child] as f32,
+            node.child_max_y[child] as f32,
+            node.child_max_z[child] as f32,
+        );
+        let near = Vec3A::select(negative, hi, lo);
+        let far = Vec3A::select(negative, lo, hi);
+        let t_near = near * a + b - slack * (near * abs_a + abs_b);
+        let t_far = far * a + b + slack * (far * abs_a + abs_b);
+        let t_min = t_near.max_element().max(0.0);
+        let t_max = t_far.min_element().min(t_max_ray);
+        if t_min <= t_max {
+            let child_bits = extract_byte64(child_bits8, child);
+            let bit_index = extract_byte64(bit_index8, child);
+            hit_mask |= child_bits << bit_index;
+        }
+    }
+    hit_mask
+}

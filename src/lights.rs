@@ -1,0 +1,552 @@
+//! Light sources and their sampling (next-event estimation).
+//!
+//! Direct lighting at p from a source s, in solid angle:
+//!
+//!     L_direct(p, ωo) = ∫ L_e(q, −ω) f_r(p, ω → ωo) |cos θ| dω
+//!
+//! is estimated by drawing one light (probability ∝ power, alias table) and
+//! one point or direction on it; a [`LightSample`] carries the incident
+//! radiance `L_i` and the solid-angle density `pdf` (selection included), so
+//! the estimate is `f_r · L_i · cos θ / pdf`. Point, spot and directional
+//! lights are Diracs: `L_i` is I/d² (or E) and `pdf` is the selection
+//! probability alone.
+//!
+//! | light | sampled | L_i | pdf (solid angle) |
+//! |---|---|---|---|
+//! | emissive triangle | area, uniform | L_e(q, −ω) | P_sel · d² / (A · cos θ_q) |
+//! | sphere (radius r) | cone of directions it subtends | I(−ω) / (π r²) | P_sel / (2π (1 − cos θ_max)) |
+//! | point, spot | — | I(−ω) / d² | P_sel (Dirac) |
+//! | cosine point (area light collapsed) | — | L_e A max(0, n·(−ω)) / d² | P_sel (Dirac) |
+//! | directional | — | E | P_sel (Dirac) |
+//!
+//! The course's swap keeps power: an area light of radiance L_e and area A
+//! (Φ = π A L_e) becomes a point at its centroid with intensity
+//! I(ω) = L_e A max(0, n·ω); a point light of intensity I (Φ = 4π I) becomes a
+//! sphere of radius r with radiance I / (π r²). A spot light keeps its cone:
+//! the sphere's radiance towards ω is I(ω) / (π r²).
+
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
+
+use crate::accel::{Sphere, intersect_sphere};
+use crate::color::luminance;
+use crate::geometry::{Frame, Ray, offset_ray_origin};
+use crate::sampling::{AliasTable, uniform_cone, uniform_cone_pdf, uniform_triangle};
+use crate::scene::{NO_ID, PunctualKind, Scene};
+use crate::settings::{LightMode, RenderSettings};
+use crate::shading::SurfacePoint;
+
+/// Shadow rays stop this fraction short of the light point (pbrt's ShadowEpsilon):
+/// both ends are already offset off their surfaces, this only absorbs the
+/// rounding of `origin + t·direction` near t = 1.
+const SHADOW_EPSILON: f32 = 1e-4;
+
+/// The angular profile of a spot light (glTF KHR_lights_punctual falloff).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cone {
+    /// Unit direction the light points to.
+    pub axis: Vec3,
+    pub cos_inner: f32,
+    pub cos_outer: f32,
+}
+
+impl Cone {
+    /// Fraction of the peak intensity emitted along unit `direction`:
+    /// squared linear ramp in cos θ between the outer and inner cones.
+    pub fn falloff(&self, direction: Vec3) -> f32 {
+        let scale = 1.0 / (self.cos_inner - self.cos_outer).max(1e-3);
+        let t = ((self.axis.dot(direction) - self.cos_outer) * scale).clamp(0.0, 1.0);
+        t * t
+    }
+
+    /// Solid angle ∫ falloff dω (approximate: the mean of the two cones').
+    fn solid_angle(&self) -> f32 {
+        2.0 * PI * (1.0 - 0.5 * (self.cos_inner + self.cos_outer))
+    }
+}
+
+/// One light source of a render.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Light {
+    /// An emissive scene triangle.
+    Triangle { triangle: u32, area: f32 },
+    /// A point light of intensity I (W/sr), optionally restricted to a cone.
+    Point {
+        position: Vec3,
+        intensity: Vec3,
+        cone: Option<Cone>,
+    },
+    /// An area light collapsed to a point: I(ω) = radiance_area · max(0, n·ω).
+    CosinePoint {
+        position: Vec3,
+        normal: Vec3,
+        radiance_area: Vec3,
+        two_sided: bool,
+    },
+    /// Parallel light of irradiance E (W/m²) arriving from `towards_light`.
+    Directional {
+        towards_light: Vec3,
+        irradiance: Vec3,
+    },
+    /// A point light made extended: sphere `sphere` of the accel.
+    Sphere {
+        sphere: Sphere,
+        intensity: Vec3,
+        cone: Option<Cone>,
+    },
+}
+
+impl Light {
+    /// Whether the light is a Dirac in position or direction (BRDF sampling cannot hit it).
+    pub fn is_delta(&self) -> bool {
+        !matches!(self, Light::Triangle { .. } | Light::Sphere { .. })
+    }
+
+    /// Radiant intensity of a point-like light towards unit `direction`.
+    fn intensity_towards(intensity: Vec3, cone: &Option<Cone>, direction: Vec3) -> Vec3 {
+        match cone {
+            Some(c) => intensity * c.falloff(direction),
+            None => intensity,
+        }
+    }
+}
+
+/// Incident light drawn at a surface point.
+#[derive(Clone, Copy, Debug)]
+pub struct LightSample {
+    /// Unit direction from the surface towards the light.
+    pub wi: Vec3,
+    /// Incident radiance (Dirac lights: I/d² or E).
+    pub radiance: Vec3,
+    /// Solid-angle density including the light's selection probability
+    /// (Dirac lights: the selection probability).
+    pub pdf: f32,
+    pub delta: bool,
+    /// The ray whose occlusion hides the light.
+    pub shadow_ray: Ray,
+    /// Sphere the shadow ray ends on, not to be counted as an occluder.
+    pub target_sphere: Option<u32>,
+}
+
+/// The lights of a scene under one light mode, with their selection table.
+#[derive(Clone, Debug, Default)]
+pub struct LightTable {
+    pub lights: Vec<Light>,
+    selection: AliasTable,
+    /// Light index of each scene triangle (`NO_ID` if it is not a light).
+    triangle_light: Vec<u32>,
+    /// Light index of each accel sphere.
+    sphere_light: Vec<u32>,
+    /// Scene triangles that stop being geometry (emitters collapsed to points).
+    pub hidden_triangles: Vec<bool>,
+    pub spheres: Vec<Sphere>,
+}
+
+impl LightTable {
+    /// The lights of `scene` as `settings.light_mode` asks.
+    pub fn build(scene: &Scene, settings: &RenderSettings) -> Self {
+        let mut table = LightTable {
+            triangle_light: vec![NO_ID; scene.triangles.len()],
+            hidden_triangles: vec![false; scene.triangles.len()],
+            ..Default::default()
+        };
+        match settings.light_mode {
+            LightMode::Point => table.add_collapsed_emitters(scene),
+            _ => table.add_emissive_triangles(scene),
+        }
+        let radius = settings
+            .light_radius
+            .unwrap_or(0.02 * scene.bounds().diagonal().max(1e-6));
+        table.add_punctual_lights(scene, settings.light_mode == LightMode::Area, radius);
+        let scene_radius = 0.5 * scene.bounds().diagonal();
+        let powers: Vec<f32> = table
+            .lights
+            .iter()
+            .map(|l| power(scene, l, scene_radius))
+            .collect();
+        table.selection = AliasTable::new(&powers);
+        table
+    }
+
+    fn push(&mut self, light: Light) -> u32 {
+        self.lights.push(light);
+        (self.lights.len() - 1) as u32
+    }
+
+    fn add_emissive_triangles(&mut self, scene: &Scene) {
+        for (i, tri) in scene.triangles.iter().enumerate() {
+            if !scene.materials[tri.material as usize].is_emissive() {
+                continue;
+            }
+            let area = triangle_area(scene, i as u32);
+            if area > 0.0 {
+                self.triangle_light[i] = self.push(Light::Triangle {
+                    triangle: i as u32,
+                    area,
+                });
+            }
+        }
+    }
+
+    /// Light mode `point`: each emitter (object × material) becomes one cosine
+    /// point at its area-weighted centroid if it is planar, else one per triangle.
+    fn add_collapsed_emitters(&mut self, scene: &Scene) {
+        let mut groups: std::collections::BTreeMap<(u32, u32), Vec<u32>> = Default::default();
+        for (i, tri) in scene.triangles.iter().enumerate() {
+            if scene.materials[tri.material as usize].is_emissive() {
+                self.hidden_triangles[i] = true;
+                groups
+                    .entry((tri.object, tri.material))
+                    .or_default()
+                    .push(i as u32);
+            }
+        }
+        for ((_, material), triangles) in groups {
+            let material = &scene.materials[material as usize];
+            let radiance = material.emission
+                * material
+                    .emission_texture
+                    .map_or(Vec3::ONE, |t| scene.textures[t.texture as usize].mean());
+            let normal_of = |t: u32| SurfacePoint::new(scene, t, Vec3::splat(1.0 / 3.0)).ng;
+            let n0 = normal_of(triangles[0]);
+            let planar = triangles.iter().all(|&t| normal_of(t).dot(n0) > 1.0 - 1e-5);
+            let parts: Vec<Vec<u32>> = if planar {
+                vec![triangles]
+            } else {
+                triangles.into_iter().map(|t| vec![t]).collect()
+            };
+            for part in parts {
+                let area: f32 = part.iter().map(|&t| triangle_area(scene, t)).sum();
+                if area <= 0.0 {
+                    continue;
+                }
+                let centroid = part
+                    .iter()
+                    .map(|&t| {
+                        triangle_area(scene, t)
+                            * SurfacePoint::new(scene, t, Vec3::splat(1.0 / 3.0)).p
+                    })
+                    .sum::<Vec3>()
+                    / area;
+                self.push(Light::CosinePoint {
+                    position: centroid,
+                    normal: normal_of(part[0]),
+                    radiance_area: radiance * area,
+                    two_sided: material.double_sided,
+                });
+            }
+        }
+    }
+
+    fn add_punctual_lights(&mut self, scene: &Scene, extended: bool, radius: f32) {
+        for light in &scene.lights {
+            let cone = match light.kind {
+                PunctualKind::Spot {
+                    inner_cone_angle,
+                    outer_cone_angle,
+                } => Some(Cone {
+                    axis: light.direction,
+                    cos_inner: inner_cone_angle.cos(),
+                    cos_outer: outer_cone_angle.cos(),
+                }),
+                _ => None,
+            };
+            let new = match light.kind {
+                PunctualKind::Directional => Light::Directional {
+                    towards_light: -light.direction,
+                    irradiance: light.intensity,
+                },
+                _ if extended => {
+                    let sphere = Sphere {
+                        center: light.position,
+                        radius,
+                        light: self.lights.len() as u32,
+                    };
+                    self.spheres.push(sphere);
+                    self.sphere_light.push(sphere.light);
+                    Light::Sphere {
+                        sphere,
+                        intensity: light.intensity,
+                        cone,
+                    }
+                }
+                _ => Light::Point {
+                    position: light.position,
+                    intensity: light.intensity,
+                    cone,
+                },
+            };
+            self.push(new);
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.selection.is_empty()
+    }
+
+    /// Whether some light can be hit by a ray (area or sphere lights).
+    pub fn has_hittable_lights(&self) -> bool {
+        self.lights
+            .iter()
+            .enumerate()
+            .any(|(i, l)| !l.is_delta() && self.selection.pmf(i) > 0.0)
+    }
+
+    /// Light index of scene triangle `triangle`, if it is an emitter of this table.
+    pub fn light_of_triangle(&self, triangle: u32) -> Option<u32> {
+        self.triangle_light
+            .get(triangle as usize)
+            .copied()
+            .filter(|&l| l != NO_ID)
+    }
+
+    /// Draws light at surface point `at` from two uniform numbers (selection, position).
+    pub fn sample(
+        &self,
+        scene: &Scene,
+        at: &SurfacePoint,
+        u_select: f32,
+        u: Vec2,
+    ) -> Option<LightSample> {
+        let (index, pmf) = self.selection.sample(u_select)?;
+        let mut sample = match self.lights[index] {
+            Light::Triangle { triangle, area } => sample_triangle(scene, at, triangle, area, u)?,
+            Light::Point {
+                position,
+                intensity,
+                cone,
+            } => {
+                let to_light = position - at.p;
+                let wi = to_light.normalize_or_zero();
+                let radiance =
+                    Light::intensity_towards(intensity, &cone, -wi) / to_light.length_squared();
+                delta_sample(at, wi, radiance, position)
+            }
+            Light::CosinePoint {
+                position,
+                normal,
+                radiance_area,
+                two_sided,
+            } => {
+                let to_light = position - at.p;
+                let wi = to_light.normalize_or_zero();
+                let cos = normal.dot(-wi);
+                let cos = if two_sided { cos.abs() } else { cos.max(0.0) };
+                delta_sample(
+                    at,
+                    wi,
+                    radiance_area * cos / to_light.length_squared(),
+                    position,
+                )
+            }
+            Light::Directional {
+                towards_light,
+                irradiance,
+            } => {
+                let origin = offset_ray_origin(at.p, at.p_error, at.ng, towards_light);
+                LightSample {
+                    wi: towards_light,
+                    radiance: irradiance,
+                    pdf: 1.0,
+                    delta: true,
+                    shadow_ray: Ray::new(origin, towards_light, f32::INFINITY),
+                    target_sphere: None,
+                }
+            }
+            Light::Sphere {
+                sphere,
+                intensity,
+                cone,
+            } => sample_sphere(at, &sphere, intensity, &cone, u, self.sphere_index(index))?,
+        };
+        if !sample.radiance.is_finite() || sample.radiance.max_element() <= 0.0 {
+            return None;
+        }
+        sample.pdf *= pmf;
+        Some(sample)
+    }
+
+    fn sphere_index(&self, light: usize) -> u32 {
+        self.sphere_light
+            .iter()
+            .position(|&l| l as usize == light)
+            .map_or(NO_ID, |i| i as u32)
+    }
+
+    /// Solid-angle density with which [`LightTable::sample`] at `from` picks the
+    /// point `hit` of emissive triangle `triangle` (0 if it is not a light).
+    pub fn pdf_triangle(
+        &self,
+        scene: &Scene,
+        from: Vec3,
+        triangle: u32,
+        hit: &SurfacePoint,
+    ) -> f32 {
+        let Some(light) = self.light_of_triangle(triangle) else {
+            return 0.0;
+        };
+        let Light::Triangle { area, .. } = self.lights[light as usize] else {
+            return 0.0;
+        };
+        let to_hit = hit.p - from;
+        let distance2 = to_hit.length_squared();
+        let cos = hit.ng.dot(-to_hit.normalize_or_zero());
+        let material = &scene.materials[scene.triangles[triangle as usize].material as usize];
+        let cos = if material.double_sided {
+            cos.abs()
+        } else {
+            cos
+        };
+        if cos <= 0.0 {
+            return 0.0;
+        }
+        self.selection.pmf(light as usize) * distance2 / (cos * area)
+    }
+
+    /// Radiance leaving accel sphere `sphere` along unit `direction`, and the
+    /// solid-angle density with which sampling at `from` picks that direction.
+    pub fn sphere_emission(&self, sphere: u32, from: Vec3, direction: Vec3) -> (Vec3, f32) {
+        let light = self.sphere_light[sphere as usize] as usize;
+        let Light::Sphere {
+            sphere,
+            intensity,
+            cone,
+        } = self.lights[light]
+        else {
+            return (Vec3::ZERO, 0.0);
+        };
+        let radiance = Light::intensity_towards(intensity, &cone, direction)
+            / (PI * sphere.radius * sphere.radius);
+        let pdf = cone_of(&sphere, from)
+            .map_or(0.0, |(_, one_minus_cos)| uniform_cone_pdf(one_minus_cos));
+        (radiance, self.selection.pmf(light) * pdf)
+    }
+}
+
+/// A Dirac light at `position` seen from `at`.
+fn delta_sample(at: &SurfacePoint, wi: Vec3, radiance: Vec3, position: Vec3) -> LightSample {
+    let origin = offset_ray_origin(at.p, at.p_error, at.ng, wi);
+    LightSample {
+        wi,
+        radiance,
+        pdf: 1.0,
+        delta: true,
+        shadow_ray: Ray::new(origin, position - origin, 1.0 - SHADOW_EPSILON),
+        target_sphere: None,
+    }
+}
+
+fn triangle_area(scene: &Scene, triangle: u32) -> f32 {
+    let [p0, p1, p2] = scene.triangles[triangle as usize]
+        .vertices
+        .map(|v| scene.positions[v as usize]);
+    0.5 * (p1 - p0).cross(p2 - p0).length()
+}
+
+/// Uniform point on an emissive triangle, as seen from `at`.
+fn sample_triangle(
+    scene: &Scene,
+    at: &SurfacePoint,
+    triangle: u32,
+    area: f32,
+    u: Vec2,
+) -> Option<LightSample> {
+    let b = uniform_triangle(u);
+    let on_light = SurfacePoint::new(scene, triangle, b);
+    let to_light = on_light.p - at.p;
+    let distance2 = to_light.length_squared();
+    if distance2 <= 0.0 {
+        return None;
+    }
+    let wi = to_light / distance2.sqrt();
+    let radiance = on_light.emitted(scene, -wi);
+    let cos_light = on_light.ng.dot(-wi).abs();
+    if radiance.max_element() <= 0.0 || cos_light <= 0.0 {
+        return None;
+    }
+    let origin = offset_ray_origin(at.p, at.p_error, at.ng, wi);
+    let target = offset_ray_origin(on_light.p, on_light.p_error, on_light.ng, -wi);
+    Some(LightSample {
+        wi,
+        radiance,
+        pdf: distance2 / (cos_light * area),
+        delta: false,
+        shadow_ray: Ray::new(origin, target - origin, 1.0 - SHADOW_EPSILON),
+        target_sphere: None,
+    })
+}
+
+/// The cone of directions from `from` to `sphere`: its axis and 1 − cos θmax
+/// (`None` from inside the sphere).
+fn cone_of(sphere: &Sphere, from: Vec3) -> Option<(Vec3, f32)> {
+    let to_center = sphere.center - from;
+    let distance2 = to_center.length_squared();
+    let r2 = sphere.radius * sphere.radius;
+    if distance2 <= r2 {
+        return None;
+    }
+    let sin2_max = r2 / distance2;
+    let cos_max = (1.0 - sin2_max).max(0.0).sqrt();
+    // 1 − cos = sin² / (1 + cos), exact for small cones
+    Some((to_center / distance2.sqrt(), sin2_max / (1.0 + cos_max)))
+}
+
+/// A direction in the cone a sphere light subtends from `at`.
+fn sample_sphere(
+    at: &SurfacePoint,
+    sphere: &Sphere,
+    intensity: Vec3,
+    cone: &Option<Cone>,
+    u: Vec2,
+    sphere_index: u32,
+) -> Option<LightSample> {
+    let (axis, one_minus_cos) = cone_of(sphere, at.p)?;
+    let wi = Frame::from_z(axis)
+        .to_world(uniform_cone(u, one_minus_cos))
+        .normalize();
+    let probe = Ray::new(at.p, wi, f32::INFINITY);
+    // a grazing direction may miss by rounding: take the point of closest approach
+    let t =
+        intersect_sphere(&probe, sphere, f32::INFINITY).unwrap_or((sphere.center - at.p).dot(wi));
+    let target = at.p + t * wi;
+    let radiance =
+        Light::intensity_towards(intensity, cone, -wi) / (PI * sphere.radius * sphere.radius);
+    let origin = offset_ray_origin(at.p, at.p_error, at.ng, wi);
+    Some(LightSample {
+        wi,
+        radiance,
+        pdf: uniform_cone_pdf(one_minus_cos),
+        delta: false,
+        shadow_ray: Ray::new(origin, target - origin, 1.0 - SHADOW_EPSILON),
+        target_sphere: Some(sphere_index),
+    })
+}
+
+/// Emitted power (luminance, W) used to choose between lights.
+fn power(scene: &Scene, light: &Light, scene_radius: f32) -> f32 {
+    let pi = PI;
+    match *light {
+        Light::Triangle { triangle, area } => {
+            let material = &scene.materials[scene.triangles[triangle as usize].material as usize];
+            let texture_mean = material
+                .emission_texture
+                .map_or(Vec3::ONE, |t| scene.textures[t.texture as usize].mean());
+            let sides = if material.double_sided { 2.0 } else { 1.0 };
+            sides * pi * area * luminance(material.emission * texture_mean)
+        }
+        Light::Point {
+            intensity, cone, ..
+        }
+        | Light::Sphere {
+            intensity, cone, ..
+        } => luminance(intensity) * cone.map_or(4.0 * pi, |c| c.solid_angle()),
+        Light::CosinePoint {
+            radiance_area,
+            two_sided,
+            ..
+        } => (if two_sided { 2.0 } else { 1.0 }) * pi * luminance(radiance_area),
+        Light::Directional { irradiance, .. } => {
+            pi * scene_radius * scene_radius * luminance(irradiance)
+        }
+    }
+}

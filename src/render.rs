@@ -1,0 +1,119 @@
+//! The render loop: passes of one sample per pixel, spread over threads.
+//!
+//! Pass s draws sample s of every pixel; the sample's random numbers come from
+//! (seed, pixel, s) only, so the film is bit-identical whatever the number of
+//! threads or the order in which tiles finish. Tiles are bands of rows,
+//! handed to rayon's work-stealing pool.
+
+use std::time::{Duration, Instant};
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use crate::film::Film;
+use crate::integrator::{RayCounts, RenderContext, TermRadiance};
+use crate::sampling::SampleStream;
+use crate::settings::Term;
+
+/// Rows per tile: small enough to balance two to many cores, large enough
+/// that scheduling costs nothing next to the paths.
+const TILE_ROWS: usize = 4;
+
+/// When to stop a render.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Budget {
+    Samples(u32),
+    Time(Duration),
+}
+
+/// What a render did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RenderStats {
+    pub samples_per_pixel: u32,
+    pub elapsed: Duration,
+    pub rays: RayCounts,
+}
+
+impl RenderStats {
+    pub fn mrays_per_second(&self) -> f64 {
+        self.rays.total() as f64 / self.elapsed.as_secs_f64().max(1e-9) / 1e6
+    }
+}
+
+/// Reusable memory for the samples of one pass.
+#[derive(Default)]
+pub struct PassBuffer {
+    samples: Vec<TermRadiance>,
+}
+
+/// Renders pass `pass` (sample index) of every pixel into `film`.
+pub fn render_pass(
+    context: &RenderContext,
+    film: &mut Film,
+    pass: u32,
+    buffer: &mut PassBuffer,
+) -> RayCounts {
+    let width = film.width as usize;
+    buffer
+        .samples
+        .resize(film.pixel_count(), [Vec3::ZERO; Term::COUNT]);
+    let seed = context.settings.seed;
+    let counts = buffer
+        .samples
+        .par_chunks_mut(width * TILE_ROWS)
+        .enumerate()
+        .map(|(tile, pixels)| {
+            let mut counts = RayCounts::default();
+            for (offset, sample) in pixels.iter_mut().enumerate() {
+                let index = tile * width * TILE_ROWS + offset;
+                let (x, y) = ((index % width) as u32, (index / width) as u32);
+                let stream = SampleStream::new(seed, index as u64, pass as u64);
+                *sample = context.sample_pixel(x, y, &stream, &mut counts);
+            }
+            counts
+        })
+        .reduce(RayCounts::default, |mut a, b| {
+            a.add(&b);
+            a
+        });
+    film.add_pass(context.settings.terms, &buffer.samples);
+    counts
+}
+
+/// Renders until `budget` is spent (at least one pass), calling `progress`
+/// after each pass with the stats so far.
+pub fn render(
+    context: &RenderContext,
+    film: &mut Film,
+    budget: Budget,
+    mut progress: impl FnMut(&RenderStats),
+) -> RenderStats {
+    let start = Instant::now();
+    let mut stats = RenderStats::default();
+    let mut buffer = PassBuffer::default();
+    let first_pass = Term::ALL
+        .iter()
+        .filter(|t| context.settings.terms.contains(**t))
+        .map(|&t| film.samples(t))
+        .min()
+        .unwrap_or(0);
+    loop {
+        let counts = render_pass(
+            context,
+            film,
+            first_pass + stats.samples_per_pixel,
+            &mut buffer,
+        );
+        stats.rays.add(&counts);
+        stats.samples_per_pixel += 1;
+        stats.elapsed = start.elapsed();
+        progress(&stats);
+        let done = match budget {
+            Budget::Samples(n) => stats.samples_per_pixel >= n,
+            Budget::Time(limit) => stats.elapsed >= limit,
+        };
+        if done {
+            return stats;
+        }
+    }
+}

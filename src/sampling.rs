@@ -1,0 +1,305 @@
+//! Random numbers and the warps that turn them into samples.
+//!
+//! **Random numbers.** A sample's numbers are a pure function of
+//! (seed, pixel, sample index, dimension): [`SampleStream::uniform`] hashes
+//! the four together. No state is carried between calls, so the image does not
+//! depend on which thread renders which pixel, and skipping a computation
+//! (a term switched off) does not shift the numbers used by the others: each
+//! use has its own fixed dimension ([`dim`]).
+//!
+//! **Warps.** Each maps the unit square to a domain with a known density:
+//!
+//! | warp | domain | pdf |
+//! |---|---|---|
+//! | [`cosine_hemisphere`] | directions, z ≥ 0 | cos θ / π (solid angle) |
+//! | [`uniform_hemisphere`] | directions, z ≥ 0 | 1 / 2π |
+//! | [`uniform_sphere`] | all directions | 1 / 4π |
+//! | [`uniform_cone`] | directions within θmax of +z | 1 / (2π (1 − cos θmax)) |
+//! | [`phong_lobe`] | directions around +z | (n + 1)/(2π) cosⁿ α |
+//! | [`uniform_triangle`] | barycentrics | 1 / area |
+//!
+//! [`AliasTable`] picks an index in proportion to given weights in O(1).
+
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
+
+/// Fixed dimensions of a sample: each use of a random number has its own.
+pub mod dim {
+    /// Position inside the pixel (2D).
+    pub const PIXEL: u32 = 0;
+    /// Dimensions used at path vertex `vertex` start at `vertex_base(vertex)`.
+    pub const PER_VERTEX: u32 = 8;
+    pub const LIGHT_SELECT: u32 = 0;
+    /// 2D.
+    pub const LIGHT_POSITION: u32 = 1;
+    pub const BRDF_LOBE: u32 = 3;
+    /// 2D.
+    pub const BRDF_DIRECTION: u32 = 4;
+    pub const RUSSIAN_ROULETTE: u32 = 6;
+
+    /// First dimension of path vertex `vertex` (0 = the first surface hit).
+    pub const fn vertex_base(vertex: u32) -> u32 {
+        2 + vertex * PER_VERTEX
+    }
+}
+
+/// SplitMix64's finaliser: a fast, well-mixing 64-bit hash.
+#[inline]
+fn mix64(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// The random numbers of one sample of one pixel.
+#[derive(Clone, Copy, Debug)]
+pub struct SampleStream {
+    key: u64,
+}
+
+impl SampleStream {
+    pub fn new(seed: u64, pixel: u64, sample: u64) -> Self {
+        let key = mix64(mix64(seed ^ 0x5851_f42d_4c95_7f2d) ^ pixel);
+        Self {
+            key: mix64(key ^ sample.wrapping_mul(0x9e37_79b9_7f4a_7c15)),
+        }
+    }
+
+    /// A number in [0, 1) for dimension `dimension`.
+    #[inline]
+    pub fn uniform(&self, dimension: u32) -> f32 {
+        let bits = mix64(self.key ^ (dimension as u64 + 1).wrapping_mul(0xd1b5_4a32_d192_ed03));
+        // 24 random bits: every value exactly representable, never 1.0
+        (bits >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
+    }
+
+    /// A point in [0, 1)² from dimensions `dimension` and `dimension + 1`.
+    #[inline]
+    pub fn uniform2(&self, dimension: u32) -> Vec2 {
+        Vec2::new(self.uniform(dimension), self.uniform(dimension + 1))
+    }
+}
+
+/// Cosine-weighted direction on the hemisphere z ≥ 0 (Malley: a uniform disk point lifted).
+pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
+    let d = concentric_disk(u);
+    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
+    Vec3::new(d.x, d.y, z)
+}
+
+/// Density of [`cosine_hemisphere`] w.r.t. solid angle.
+pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
+    cos_theta.max(0.0) / PI
+}
+
+/// Uniform direction on the hemisphere z ≥ 0.
+pub fn uniform_hemisphere(u: Vec2) -> Vec3 {
+    let z = u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+pub const UNIFORM_HEMISPHERE_PDF: f32 = 1.0 / (2.0 * PI);
+
+/// Uniform direction on the unit sphere.
+pub fn uniform_sphere(u: Vec2) -> Vec3 {
+    let z = 1.0 - 2.0 * u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+pub const UNIFORM_SPHERE_PDF: f32 = 1.0 / (4.0 * PI);
+
+/// Uniform direction inside the cone of half-angle θmax around +z, given
+/// 1 − cos θmax (passed as such: it is tiny for small cones and 1 − cos loses it).
+pub fn uniform_cone(u: Vec2, one_minus_cos_max: f32) -> Vec3 {
+    let cos_theta = 1.0 - u.x * one_minus_cos_max;
+    let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(sin_theta * phi.cos(), sin_theta * phi.sin(), cos_theta)
+}
+
+/// Density of [`uniform_cone`] w.r.t. solid angle.
+pub fn uniform_cone_pdf(one_minus_cos_max: f32) -> f32 {
+    1.0 / (2.0 * PI * one_minus_cos_max)
+}
+
+/// Direction around +z with density ∝ cosⁿ α (α the angle to +z).
+pub fn phong_lobe(u: Vec2, exponent: f32) -> Vec3 {
+    let cos_alpha = u.x.powf(1.0 / (exponent + 1.0));
+    let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(sin_alpha * phi.cos(), sin_alpha * phi.sin(), cos_alpha)
+}
+
+/// Density of [`phong_lobe`] w.r.t. solid angle, given cos α.
+pub fn phong_lobe_pdf(cos_alpha: f32, exponent: f32) -> f32 {
+    if cos_alpha <= 0.0 {
+        0.0
+    } else {
+        (exponent + 1.0) / (2.0 * PI) * cos_alpha.powf(exponent)
+    }
+}
+
+/// Uniform point on a triangle, as barycentrics (b0, b1, b2) (Heitz's low-distortion warp).
+pub fn uniform_triangle(u: Vec2) -> Vec3 {
+    let (b0, b1) = if u.x < u.y {
+        let b0 = u.x / 2.0;
+        (b0, u.y - b0)
+    } else {
+        let b1 = u.y / 2.0;
+        (u.x - b1, b1)
+    };
+    Vec3::new(b0, b1, 1.0 - b0 - b1)
+}
+
+/// Uniform point on the unit disk (Shirley–Chiu concentric map).
+pub fn concentric_disk(u: Vec2) -> Vec2 {
+    let o = 2.0 * u - Vec2::ONE;
+    if o == Vec2::ZERO {
+        return Vec2::ZERO;
+    }
+    let (r, theta) = if o.x.abs() > o.y.abs() {
+        (o.x, PI / 4.0 * (o.y / o.x))
+    } else {
+        (o.y, PI / 2.0 - PI / 4.0 * (o.x / o.y))
+    };
+    r * Vec2::new(theta.cos(), theta.sin())
+}
+
+/// The power heuristic (β = 2) weight of a strategy of density `pdf_a` against `pdf_b`.
+pub fn power_heuristic(pdf_a: f32, pdf_b: f32) -> f32 {
+    let (a, b) = (pdf_a * pdf_a, pdf_b * pdf_b);
+    if a == 0.0 {
+        0.0
+    } else if !(a + b).is_finite() {
+        // one density overflowed: the larger one takes all the weight
+        if pdf_a >= pdf_b { 1.0 } else { 0.0 }
+    } else {
+        a / (a + b)
+    }
+}
+
+/// Walker's alias method: picks index i with probability wᵢ / Σw in O(1).
+#[derive(Clone, Debug, Default)]
+pub struct AliasTable {
+    /// Probability of keeping bin i rather than taking its alias.
+    keep: Vec<f32>,
+    alias: Vec<u32>,
+    /// Normalised probability of each index.
+    pmf: Vec<f32>,
+}
+
+impl AliasTable {
+    /// Builds the table; negative and non-finite weights count as zero.
+    /// All-zero (or empty) weights give an empty table that picks nothing.
+    pub fn new(weights: &[f32]) -> Self {
+        let clean: Vec<f64> = weights
+            .iter()
+            .map(|&w| {
+                if w.is_finite() && w > 0.0 {
+                    w as f64
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let total: f64 = clean.iter().sum();
+        if total <= 0.0 {
+            return Self::default();
+        }
+        let n = clean.len();
+        let pmf: Vec<f32> = clean.iter().map(|w| (w / total) as f32).collect();
+        let mut scaled: Vec<f64> = clean.iter().map(|w| w / total * n as f64).collect();
+        let mut keep = vec![1.0f32; n];
+        let mut alias: Vec<u32> = (0..n as u32).collect();
+        let (mut small, mut large): (Vec<usize>, Vec<usize>) =
+            (0..n).partition(|&i| scaled[i] < 1.0);
+        while let (Some(s), Some(&l)) = (small.pop(), large.last()) {
+            keep[s] = scaled[s] as f32;
+            alias[s] = l as u32;
+            scaled[l] -= 1.0 - scaled[s];
+            if scaled[l] < 1.0 {
+                large.pop();
+                small.push(l);
+            }
+        }
+        // leftovers are 1 up to rounding
+        Self { keep, alias, pmf }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.pmf.is_empty()
+    }
+
+    /// Picks an index from one uniform number in [0, 1); returns it with its probability.
+    pub fn sample(&self, u: f32) -> Option<(usize, f32)> {
+        if self.pmf.is_empty() {
+            return None;
+        }
+        let n = self.pmf.len();
+        let scaled = u * n as f32;
+        let bin = (scaled as usize).min(n - 1);
+        let frac = scaled - bin as f32;
+        let index = if frac < self.keep[bin] {
+            bin
+        } else {
+            self.alias[bin] as usize
+        };
+        Some((index, self.pmf[index]))
+    }
+
+    /// Probability of picking `index`.
+    pub fn pmf(&self, index: usize) -> f32 {
+        self.pmf.get(index).copied().unwrap_or(0.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn alias_table_frequencies_match_weights() {
+        let weights = [1.0, 0.0, 3.0, 6.0];
+        let table = AliasTable::new(&weights);
+        let mut counts = [0u32; 4];
+        let n = 100_000;
+        for i in 0..n {
+            let (index, _) = table.sample((i as f32 + 0.5) / n as f32).unwrap();
+            counts[index] += 1;
+        }
+        for (count, w) in counts.iter().zip(weights) {
+            let expected = w / 10.0 * n as f32;
+            assert!((*count as f32 - expected).abs() <= 2.0 + 1e-3 * n as f32);
+        }
+        assert!((table.pmf(3) - 0.6).abs() < 1e-6);
+    }
+
+    #[test]
+    fn alias_table_of_zero_weights_is_empty() {
+        assert!(
+            AliasTable::new(&[0.0, -1.0, f32::NAN])
+                .sample(0.5)
+                .is_none()
+        );
+    }
+
+    #[test]
+    fn uniform_numbers_are_in_range_and_decorrelated_across_dimensions() {
+        let s = SampleStream::new(7, 3, 11);
+        let mut mean = 0.0;
+        for d in 0..10_000 {
+            let u = s.uniform(d);
+            assert!((0.0..1.0).contains(&u));
+            mean += u as f64;
+        }
+        assert!((mean / 10_000.0 - 0.5).abs() < 0.01);
+        assert_ne!(
+            SampleStream::new(0, 0, 0).uniform(0),
+            SampleStream::new(0, 0, 1).uniform(0)
+        );
+    }
+}

@@ -1,0 +1,342 @@
+//! Render settings: plain data, separate from the scene and from runtime state.
+//!
+//! Every enum here is a closed set with `ALL` and `label()`, so the command
+//! line, the viewer and saved settings share one list of names.
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::str::FromStr;
+
+/// A lighting term of the course: the light that reached the camera after
+/// exactly k reflections (L3+: three or more).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub enum Term {
+    L0,
+    L1,
+    L2,
+    L3Plus,
+}
+
+impl Term {
+    pub const ALL: [Term; 4] = [Term::L0, Term::L1, Term::L2, Term::L3Plus];
+    pub const COUNT: usize = 4;
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Term::L0 => "L0",
+            Term::L1 => "L1",
+            Term::L2 => "L2",
+            Term::L3Plus => "L3+",
+        }
+    }
+
+    /// The term a path with `reflections` reflections belongs to.
+    pub fn of_reflections(reflections: u32) -> Term {
+        match reflections {
+            0 => Term::L0,
+            1 => Term::L1,
+            2 => Term::L2,
+            _ => Term::L3Plus,
+        }
+    }
+
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    /// One-line description (English).
+    pub fn description(self) -> &'static str {
+        match self {
+            Term::L0 => "emission: light emitted by the surface the camera sees",
+            Term::L1 => "direct lighting: light from the sources, reflected once",
+            Term::L2 => "indirect lighting: light reflected twice",
+            Term::L3Plus => "three reflections or more (the rest of the full solution)",
+        }
+    }
+}
+
+impl fmt::Display for Term {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.label())
+    }
+}
+
+/// A set of terms.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub struct TermSet {
+    bits: u8,
+}
+
+impl TermSet {
+    pub const NONE: TermSet = TermSet { bits: 0 };
+    pub const ALL: TermSet = TermSet { bits: 0b1111 };
+    /// The default of the course: L0 + L1 + L2.
+    pub const COURSE: TermSet = TermSet { bits: 0b0111 };
+
+    pub fn only(term: Term) -> Self {
+        Self {
+            bits: 1 << term.index(),
+        }
+    }
+
+    pub fn contains(self, term: Term) -> bool {
+        self.bits & (1 << term.index()) != 0
+    }
+
+    /// Whether the term of paths with `reflections` reflections is in the set.
+    pub fn contains_reflections(self, reflections: u32) -> bool {
+        self.contains(Term::of_reflections(reflections))
+    }
+
+    pub fn with(self, term: Term, on: bool) -> Self {
+        let bit = 1 << term.index();
+        Self {
+            bits: if on {
+                self.bits | bit
+            } else {
+                self.bits & !bit
+            },
+        }
+    }
+
+    pub fn is_empty(self) -> bool {
+        self.bits == 0
+    }
+
+    pub fn iter(self) -> impl Iterator<Item = Term> {
+        Term::ALL.into_iter().filter(move |&t| self.contains(t))
+    }
+
+    /// The most reflections a path needs for these terms (`u32::MAX` with L3+).
+    pub fn max_reflections(self) -> Option<u32> {
+        self.iter().last().map(|t| match t {
+            Term::L3Plus => u32::MAX,
+            t => t.index() as u32,
+        })
+    }
+}
+
+impl fmt::Display for TermSet {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let labels: Vec<&str> = self.iter().map(Term::label).collect();
+        f.write_str(&labels.join(","))
+    }
+}
+
+impl FromStr for TermSet {
+    type Err = String;
+
+    /// `L0,L1,L2`, `all`, case-insensitive; `L3` is accepted for `L3+`.
+    fn from_str(s: &str) -> Result<Self, String> {
+        let mut set = TermSet::NONE;
+        for word in s.split(',').map(str::trim) {
+            let term = match word.to_ascii_uppercase().as_str() {
+                "ALL" => {
+                    set = TermSet::ALL;
+                    continue;
+                }
+                "L0" => Term::L0,
+                "L1" => Term::L1,
+                "L2" => Term::L2,
+                "L3+" | "L3" => Term::L3Plus,
+                _ => {
+                    return Err(format!(
+                        "unknown term '{word}' (expected L0, L1, L2, L3+ or all, separated by commas)"
+                    ));
+                }
+            };
+            set = set.with(term, true);
+        }
+        if set.is_empty() {
+            return Err("no term selected".into());
+        }
+        Ok(set)
+    }
+}
+
+/// Which kind of light sources a render uses (the course's point ↔ extended swap).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum LightMode {
+    /// As the scene defines them.
+    #[default]
+    Authored,
+    /// Every area light becomes a point light at its centroid (cosine lobe, same power).
+    Point,
+    /// Every point or spot light becomes a sphere light of the light radius (same power).
+    Area,
+}
+
+impl LightMode {
+    pub const ALL: [LightMode; 3] = [LightMode::Authored, LightMode::Point, LightMode::Area];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            LightMode::Authored => "authored",
+            LightMode::Point => "point",
+            LightMode::Area => "area",
+        }
+    }
+}
+
+/// A global replacement of every material's reflection model.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum BrdfOverride {
+    /// Each material's own model (from its metallic-roughness parameters).
+    #[default]
+    Authored,
+    Lambert,
+    Phong,
+    Mirror,
+}
+
+impl BrdfOverride {
+    pub const ALL: [BrdfOverride; 4] = [
+        BrdfOverride::Authored,
+        BrdfOverride::Lambert,
+        BrdfOverride::Phong,
+        BrdfOverride::Mirror,
+    ];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            BrdfOverride::Authored => "authored",
+            BrdfOverride::Lambert => "lambert",
+            BrdfOverride::Phong => "phong",
+            BrdfOverride::Mirror => "mirror",
+        }
+    }
+}
+
+macro_rules! label_from_str {
+    ($t:ty) => {
+        impl FromStr for $t {
+            type Err = String;
+            fn from_str(s: &str) -> Result<Self, String> {
+                let names: Vec<&str> = Self::ALL.iter().map(|v| v.label()).collect();
+                Self::ALL
+                    .into_iter()
+                    .find(|v| v.label().eq_ignore_ascii_case(s.trim()))
+                    .ok_or_else(|| {
+                        format!(
+                            "unknown value '{s}' (expected one of: {})",
+                            names.join(", ")
+                        )
+                    })
+            }
+        }
+
+        impl fmt::Display for $t {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str(self.label())
+            }
+        }
+    };
+}
+
+label_from_str!(LightMode);
+label_from_str!(BrdfOverride);
+
+/// Everything that decides the radiance a render estimates (not how long it runs).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct RenderSettings {
+    pub width: u32,
+    pub height: u32,
+    pub terms: TermSet,
+    pub light_mode: LightMode,
+    /// Radius of the sphere lights in `LightMode::Area`; `None`: 2% of the scene's diagonal.
+    pub light_radius: Option<f32>,
+    pub brdf: BrdfOverride,
+    /// Phong exponent n used by `BrdfOverride::Phong`.
+    pub phong_exponent: f32,
+    /// Specular weight ks used by `BrdfOverride::Phong` (kd = base colour × (1 − ks)).
+    pub phong_specular: f32,
+    /// Most reflections a path may have (caps L3+).
+    pub max_bounces: u32,
+    pub seed: u64,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            width: 640,
+            height: 480,
+            terms: TermSet::COURSE,
+            light_mode: LightMode::Authored,
+            light_radius: None,
+            brdf: BrdfOverride::Authored,
+            phong_exponent: 32.0,
+            phong_specular: 0.25,
+            max_bounces: 64,
+            seed: 0,
+        }
+    }
+}
+
+impl RenderSettings {
+    /// Checks the values a file or a caller could get wrong; the message says which and why.
+    pub fn validate(&self) -> Result<(), String> {
+        if self.width == 0 || self.height == 0 {
+            return Err(format!(
+                "image size {}×{} is empty",
+                self.width, self.height
+            ));
+        }
+        if self.terms.is_empty() {
+            return Err("no term selected".into());
+        }
+        if let Some(r) = self.light_radius {
+            if !(r.is_finite() && r > 0.0) {
+                return Err(format!(
+                    "light radius {r} must be a positive number of metres"
+                ));
+            }
+        }
+        if !(self.phong_exponent.is_finite() && (0.0..=1e6).contains(&self.phong_exponent)) {
+            return Err(format!(
+                "Phong exponent {} must be within 0..=1e6",
+                self.phong_exponent
+            ));
+        }
+        if !(0.0..=1.0).contains(&self.phong_specular) {
+            return Err(format!(
+                "Phong specular weight {} must be within 0..=1",
+                self.phong_specular
+            ));
+        }
+        if self.max_bounces == 0 {
+            return Err("max bounces must be at least 1".into());
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn term_sets_parse_and_print() {
+        assert_eq!("L0,L1,L2".parse::<TermSet>().unwrap(), TermSet::COURSE);
+        assert_eq!("all".parse::<TermSet>().unwrap(), TermSet::ALL);
+        assert_eq!(
+            "l3+".parse::<TermSet>().unwrap(),
+            TermSet::only(Term::L3Plus)
+        );
+        assert!("L4".parse::<TermSet>().is_err());
+        assert_eq!(TermSet::ALL.to_string(), "L0,L1,L2,L3+");
+        assert_eq!(TermSet::only(Term::L2).max_reflections(), Some(2));
+        assert_eq!(TermSet::ALL.max_reflections(), Some(u32::MAX));
+    }
+
+    #[test]
+    fn enums_parse_their_labels() {
+        for m in LightMode::ALL {
+            assert_eq!(m.label().parse::<LightMode>().unwrap(), m);
+        }
+        for b in BrdfOverride::ALL {
+            assert_eq!(b.label().parse::<BrdfOverride>().unwrap(), b);
+        }
+        assert!("points".parse::<LightMode>().is_err());
+    }
+}

@@ -1,0 +1,134 @@
+//! What a ray hit, seen as a surface: position with its error bound, normals,
+//! texture coordinates, emitted radiance and the BRDF there.
+//!
+//! Emission is one-sided (the front face, by winding) unless the material is
+//! double-sided; reflection is two-sided: the shading frame is flipped to the
+//! side the ray arrives from.
+
+use glam::{Vec2, Vec3};
+
+use crate::brdf::Brdf;
+use crate::geometry::{Frame, Ray, barycentric_point_error, offset_ray_origin};
+use crate::scene::{BrdfModel, Material, Scene, TextureRef};
+use crate::settings::{BrdfOverride, RenderSettings};
+
+/// A point on a scene triangle.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfacePoint {
+    pub p: Vec3,
+    /// Bound on the absolute rounding error of `p`, per axis.
+    pub p_error: Vec3,
+    /// Unit geometric normal of the front face (counter-clockwise winding).
+    pub ng: Vec3,
+    /// Unit shading normal (interpolated, or `ng`), on the front side.
+    pub ns: Vec3,
+    pub uv: [Vec2; 2],
+    pub triangle: u32,
+    pub material: u32,
+}
+
+impl SurfacePoint {
+    /// The point at barycentrics `b` of scene triangle `triangle`.
+    pub fn new(scene: &Scene, triangle: u32, b: Vec3) -> Self {
+        let tri = &scene.triangles[triangle as usize];
+        let [i0, i1, i2] = tri.vertices.map(|v| v as usize);
+        let (p0, p1, p2) = (
+            scene.positions[i0],
+            scene.positions[i1],
+            scene.positions[i2],
+        );
+        let p = b.x * p0 + b.y * p1 + b.z * p2;
+        let ng = (p1 - p0).cross(p2 - p0).normalize_or(Vec3::Z);
+        let ns = if tri.smooth {
+            let n = b.x * scene.normals[i0] + b.y * scene.normals[i1] + b.z * scene.normals[i2];
+            let n = n.normalize_or(ng);
+            if n.dot(ng) < 0.0 { -n } else { n }
+        } else {
+            ng
+        };
+        let interpolate = |uv: &[Vec2]| b.x * uv[i0] + b.y * uv[i1] + b.z * uv[i2];
+        Self {
+            p,
+            p_error: barycentric_point_error(b, p0, p1, p2),
+            ng,
+            ns,
+            uv: [interpolate(&scene.uv0), interpolate(&scene.uv1)],
+            triangle,
+            material: tri.material,
+        }
+    }
+
+    /// The shading frame on the side of `wo`, and the geometric normal on that side.
+    pub fn frame_towards(&self, wo: Vec3) -> (Frame, Vec3) {
+        if self.ng.dot(wo) >= 0.0 {
+            (Frame::from_z(self.ns), self.ng)
+        } else {
+            (Frame::from_z(-self.ns), -self.ng)
+        }
+    }
+
+    /// A ray leaving the surface in direction `w` (unbounded).
+    pub fn spawn_ray(&self, w: Vec3) -> Ray {
+        Ray::new(
+            offset_ray_origin(self.p, self.p_error, self.ng, w),
+            w,
+            f32::INFINITY,
+        )
+    }
+
+    fn texture(&self, scene: &Scene, texture: Option<TextureRef>) -> Vec3 {
+        texture.map_or(Vec3::ONE, |t| {
+            scene.textures[t.texture as usize].sample(self.uv[(t.uv_set as usize).min(1)])
+        })
+    }
+
+    /// Radiance emitted towards `wo` (unit, away from the surface).
+    pub fn emitted(&self, scene: &Scene, wo: Vec3) -> Vec3 {
+        let material = &scene.materials[self.material as usize];
+        if !material.is_emissive() || !(material.double_sided || self.ng.dot(wo) > 0.0) {
+            return Vec3::ZERO;
+        }
+        material.emission * self.texture(scene, material.emission_texture)
+    }
+
+    /// The reflection model here, after the global override of `settings`.
+    pub fn brdf(&self, scene: &Scene, settings: &RenderSettings) -> Brdf {
+        let material = &scene.materials[self.material as usize];
+        let base = material.base_color * self.texture(scene, material.base_color_texture);
+        resolve_brdf(material, base, settings)
+    }
+}
+
+/// The course's mapping of a material (with base colour `base` already textured)
+/// onto Lambert, Phong or mirror, honouring the global override.
+pub fn resolve_brdf(material: &Material, base: Vec3, settings: &RenderSettings) -> Brdf {
+    let override_phong = || {
+        let ks = settings.phong_specular;
+        Brdf::Phong {
+            kd: base * (1.0 - ks),
+            ks: Vec3::splat(ks),
+            exponent: settings.phong_exponent,
+        }
+    };
+    match settings.brdf {
+        BrdfOverride::Lambert => Brdf::Lambert { albedo: base },
+        BrdfOverride::Mirror => Brdf::Mirror { reflectance: base },
+        BrdfOverride::Phong => override_phong(),
+        BrdfOverride::Authored => match material.brdf_model() {
+            BrdfModel::Lambert => Brdf::Lambert { albedo: base },
+            BrdfModel::Mirror => Brdf::Mirror { reflectance: base },
+            BrdfModel::Phong { exponent } => {
+                let metallic = material.metallic.clamp(0.0, 1.0);
+                let kd = base * (1.0 - metallic);
+                let ks = Vec3::splat(0.04).lerp(base, metallic);
+                // energy conservation: kd + ks ≤ 1 in every channel
+                let scale = (kd + ks).max_element().max(1.0);
+                Brdf::Phong {
+                    kd: kd / scale,
+                    ks: ks / scale,
+                    exponent,
+                }
+            }
+        },
+    }
+}

@@ -1,0 +1,117 @@
+//! The BVH agrees with brute force, and closed meshes do not leak.
+
+use glam::Vec3;
+use lumiere::accel::{Accel, Hit, Sphere};
+use lumiere::geometry::Ray;
+use lumiere::sampling::{SampleStream, uniform_sphere};
+use lumiere::scene::builtin::uv_sphere;
+use lumiere::scene::{Material, Scene};
+
+fn random_point(stream: &SampleStream, d: u32, extent: f32) -> Vec3 {
+    (Vec3::new(
+        stream.uniform(d),
+        stream.uniform(d + 1),
+        stream.uniform(d + 2),
+    ) * 2.0
+        - 1.0)
+        * extent
+}
+
+/// A soup of random triangles of mixed sizes, plus two spheres.
+fn soup() -> Accel {
+    let mut scene = Scene::default();
+    let material = scene.add_material(Material::lambert("grey", Vec3::splat(0.5)));
+    let mut positions = Vec::new();
+    for i in 0..3000u64 {
+        let s = SampleStream::new(1, i, 0);
+        let center = random_point(&s, 0, 10.0);
+        let size = if i % 10 == 0 { 3.0 } else { 0.3 };
+        for k in 0..3 {
+            positions.push(center + random_point(&s, 3 + 3 * k, size));
+        }
+    }
+    let triangles: Vec<[u32; 3]> = (0..3000u32)
+        .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+        .collect();
+    scene.add_mesh("soup", material, &positions, &triangles);
+    let spheres = vec![
+        Sphere {
+            center: Vec3::new(1.0, 2.0, 3.0),
+            radius: 1.5,
+            light: 0,
+        },
+        Sphere {
+            center: Vec3::new(-4.0, 0.0, 1.0),
+            radius: 0.5,
+            light: 1,
+        },
+    ];
+    Accel::build(&scene, |_| true, spheres)
+}
+
+#[test]
+fn bvh_closest_hits_match_brute_force() {
+    let accel = soup();
+    let mut hits = 0;
+    for i in 0..20_000u64 {
+        let s = SampleStream::new(2, i, 0);
+        let origin = random_point(&s, 0, 14.0);
+        let direction = uniform_sphere(s.uniform2(3));
+        let t_max = if i % 3 == 0 { 5.0 } else { f32::INFINITY };
+        let ray = Ray::new(origin, direction, t_max);
+        let fast = accel.closest_hit(&ray);
+        let slow = accel.brute_force_closest_hit(&ray);
+        match (fast, slow) {
+            (None, None) => {}
+            (Some(a), Some(b)) => {
+                hits += 1;
+                assert_eq!(a.t(), b.t(), "ray {i}: different distances");
+                if let (Hit::Triangle { triangle: ta, .. }, Hit::Triangle { triangle: tb, .. }) =
+                    (a, b)
+                {
+                    let _ = (ta, tb); // equal t: either triangle is a correct answer
+                }
+            }
+            _ => panic!("ray {i}: BVH says {fast:?}, brute force says {slow:?}"),
+        }
+        assert_eq!(
+            accel.occluded(&ray, None),
+            slow.is_some(),
+            "ray {i}: occlusion disagrees"
+        );
+    }
+    assert!(
+        hits > 5_000,
+        "too few hits ({hits}) for the test to mean anything"
+    );
+}
+
+/// Rays from inside a closed tessellated sphere, aimed exactly at its
+/// vertices and edge midpoints, must all hit it (watertight test).
+#[test]
+fn closed_sphere_does_not_leak_through_vertices_or_edges() {
+    for (center, radius) in [(Vec3::ZERO, 1.0), (Vec3::splat(1e4), 3.0)] {
+        let mut scene = Scene::default();
+        let material = scene.add_material(Material::lambert("grey", Vec3::splat(0.5)));
+        let (positions, triangles) = uv_sphere(center, radius, 64, 32, true);
+        scene.add_mesh("sphere", material, &positions, &triangles);
+        let accel = Accel::build(&scene, |_| true, vec![]);
+        let mut targets: Vec<Vec3> = positions.clone();
+        for t in &triangles {
+            for k in 0..3 {
+                targets.push(0.5 * (positions[t[k] as usize] + positions[t[(k + 1) % 3] as usize]));
+            }
+        }
+        let origins = [center, center + Vec3::new(0.1, -0.2, 0.3) * radius];
+        let mut leaks = 0;
+        for origin in origins {
+            for target in &targets {
+                let ray = Ray::new(origin, *target - origin, f32::INFINITY);
+                if accel.closest_hit(&ray).is_none() {
+                    leaks += 1;
+                }
+            }
+        }
+        assert_eq!(leaks, 0, "rays escaped the closed sphere at {center}");
+    }
+}

@@ -1,0 +1,162 @@
+//! Direct lighting against closed forms: a quad light over a Lambert plane
+//! (Lambert's polygon formula), the same light collapsed to a point, and a
+//! mirror reflecting the light.
+
+mod common;
+
+use glam::Vec3;
+use lumiere::geometry::Ray;
+use lumiere::integrator::{RayCounts, RenderContext};
+use lumiere::sampling::SampleStream;
+use lumiere::scene::{Material, Scene};
+use lumiere::{LightMode, RenderSettings, Term, TermSet};
+
+const ALBEDO: f32 = 0.5;
+const RADIANCE: f32 = 4.0;
+const HEIGHT: f32 = 1.0;
+const HALF_SIDE: f32 = 0.25;
+
+/// The light's corners, counter-clockwise seen from below (it faces −z).
+fn light_corners(center: Vec3) -> [Vec3; 4] {
+    let h = HALF_SIDE;
+    [
+        center + Vec3::new(-h, -h, 0.0),
+        center + Vec3::new(-h, h, 0.0),
+        center + Vec3::new(h, h, 0.0),
+        center + Vec3::new(h, -h, 0.0),
+    ]
+}
+
+/// A large plane z = 0 (floor material) under a square light at height HEIGHT.
+fn quad_over_plane(floor: Material, light_center: Vec3) -> Scene {
+    let mut scene = Scene::default();
+    let floor = scene.add_material(floor);
+    let light = scene.add_material(Material::emitter("light", Vec3::splat(RADIANCE)));
+    let s = 20.0;
+    let plane = [
+        Vec3::new(-s, -s, 0.0),
+        Vec3::new(s, -s, 0.0),
+        Vec3::new(s, s, 0.0),
+        Vec3::new(-s, s, 0.0),
+    ];
+    scene.add_mesh("plane", floor, &plane, &[[0, 1, 2], [0, 2, 3]]);
+    scene.add_mesh(
+        "light",
+        light,
+        &light_corners(light_center),
+        &[[0, 1, 2], [0, 2, 3]],
+    );
+    scene
+}
+
+/// Irradiance at p (normal n) from a Lambertian polygon of radiance L:
+/// E = L/2 · |Σ θᵢ n·(vᵢ × vᵢ₊₁)/|vᵢ × vᵢ₊₁||  (Lambert, 1760).
+fn polygon_irradiance(p: Vec3, n: Vec3, corners: &[Vec3], radiance: f64) -> f64 {
+    let mut sum = 0.0f64;
+    for i in 0..corners.len() {
+        let a = (corners[i] - p).as_dvec3().normalize();
+        let b = (corners[(i + 1) % corners.len()] - p)
+            .as_dvec3()
+            .normalize();
+        let theta = a.dot(b).clamp(-1.0, 1.0).acos();
+        sum += theta * n.as_dvec3().dot(a.cross(b).normalize());
+    }
+    radiance / 2.0 * sum.abs()
+}
+
+/// Mean and standard error of a term along `ray` over `n` samples.
+fn estimate(context: &RenderContext, ray: Ray, term: Term, n: u64) -> (f64, f64) {
+    let (mut sum, mut sum2) = (0.0f64, 0.0f64);
+    let mut counts = RayCounts::default();
+    for i in 0..n {
+        let stream = SampleStream::new(11, 0, i);
+        let value = context.trace(ray, &stream, &mut counts)[term.index()].x as f64;
+        sum += value;
+        sum2 += value * value;
+    }
+    let mean = sum / n as f64;
+    let variance = (sum2 / n as f64 - mean * mean).max(0.0);
+    (mean, (variance / n as f64).sqrt())
+}
+
+/// A ray that reaches floor point (x, y, 0) from the side, below the light.
+fn ray_to_floor(x: f32, y: f32) -> Ray {
+    let target = Vec3::new(x, y, 0.0);
+    let origin = target + Vec3::new(1.5, 0.3, 0.4);
+    Ray::new(origin, (target - origin).normalize(), f32::INFINITY)
+}
+
+const POINTS: [(f32, f32); 4] = [(0.0, 0.0), (0.3, 0.1), (-0.8, 0.5), (2.0, -1.0)];
+
+#[test]
+fn quad_light_matches_lamberts_polygon_formula() {
+    let center = Vec3::new(0.0, 0.0, HEIGHT);
+    let scene = quad_over_plane(Material::lambert("floor", Vec3::splat(ALBEDO)), center);
+    let settings = RenderSettings {
+        terms: TermSet::only(Term::L1),
+        ..RenderSettings::default()
+    };
+    let context = RenderContext::new(scene, settings);
+    for (x, y) in POINTS {
+        let p = Vec3::new(x, y, 0.0);
+        let expected = ALBEDO as f64 / std::f64::consts::PI
+            * polygon_irradiance(p, Vec3::Z, &light_corners(center), RADIANCE as f64);
+        let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 40_000);
+        common::assert_agrees(&format!("L1 at ({x}, {y})"), measured, expected, 4.0, 1e-5);
+    }
+}
+
+#[test]
+fn quad_light_as_a_point_matches_inverse_square_law() {
+    let center = Vec3::new(0.0, 0.0, HEIGHT);
+    let scene = quad_over_plane(Material::lambert("floor", Vec3::splat(ALBEDO)), center);
+    let settings = RenderSettings {
+        terms: TermSet::only(Term::L1),
+        light_mode: LightMode::Point,
+        ..RenderSettings::default()
+    };
+    let context = RenderContext::new(scene, settings);
+    let area = (2.0 * HALF_SIDE as f64).powi(2);
+    for (x, y) in POINTS {
+        let p = Vec3::new(x, y, 0.0).as_dvec3();
+        let d = center.as_dvec3() - p;
+        let distance = d.length();
+        let cos_surface = d.z / distance;
+        // cosine lobe: I(ω) = Le · A · (n_light · ω), n_light = −z
+        let intensity = RADIANCE as f64 * area * cos_surface;
+        let expected =
+            ALBEDO as f64 / std::f64::consts::PI * intensity * cos_surface / (distance * distance);
+        let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 64);
+        common::assert_agrees(
+            &format!("point L1 at ({x}, {y})"),
+            measured,
+            expected,
+            4.0,
+            1e-5,
+        );
+    }
+}
+
+#[test]
+fn mirror_shows_the_light_times_its_reflectance() {
+    let reflectance = 0.8;
+    let center = Vec3::new(2.0, 0.0, HEIGHT);
+    let scene = quad_over_plane(Material::mirror("mirror", Vec3::splat(reflectance)), center);
+    let settings = RenderSettings {
+        terms: TermSet::ALL,
+        ..RenderSettings::default()
+    };
+    let context = RenderContext::new(scene, settings);
+    // origin (−1, 0, 0.5) → mirror at the origin → reflected to (2, 0, 1), the light's centre
+    let origin = Vec3::new(-1.0, 0.0, 0.5);
+    let ray = Ray::new(origin, (-origin).normalize(), f32::INFINITY);
+    let (l1, _) = estimate(&context, ray, Term::L1, 256);
+    let (l0, _) = estimate(&context, ray, Term::L0, 16);
+    let (l2, _) = estimate(&context, ray, Term::L2, 16);
+    let expected = (reflectance * RADIANCE) as f64;
+    assert!(
+        (l1 - expected).abs() < 1e-5 * expected,
+        "L1 {l1}, expected {expected}"
+    );
+    assert_eq!((l0, l2), (0.0, 0.0));
+}

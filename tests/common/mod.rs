@@ -1,0 +1,49 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use lumiere::render::{Budget, render};
+use lumiere::{Film, RenderContext, RenderSettings, Scene, Term, TermSet};
+
+/// Renders `scene` with `settings` at `spp` samples per pixel.
+pub fn render_film(scene: Scene, settings: &RenderSettings, spp: u32) -> Film {
+    let context = RenderContext::new(scene, settings.clone());
+    let mut film = Film::new(settings.width, settings.height);
+    render(&context, &mut film, Budget::Samples(spp), |_| {});
+    film
+}
+
+/// Settings of a small image with only `terms`.
+pub fn small(width: u32, height: u32, terms: TermSet) -> RenderSettings {
+    RenderSettings {
+        width,
+        height,
+        terms,
+        ..RenderSettings::default()
+    }
+}
+
+/// Image mean of a term's luminance and its standard error (pixels are independent).
+pub fn mean_and_error(film: &Film, term: Term) -> (f64, f64) {
+    let buffer = film.term(term).expect("term rendered");
+    let n = film.pixel_count() as f64;
+    let mean = (0..film.pixel_count())
+        .map(|i| lumiere::color::luminance(buffer.mean(i).as_vec3()) as f64)
+        .sum::<f64>()
+        / n;
+    let variance: f64 = (0..film.pixel_count())
+        .map(|i| buffer.standard_error(i).powi(2))
+        .sum::<f64>();
+    (mean, variance.sqrt() / n)
+}
+
+/// Asserts `measured` agrees with `expected` within `z` standard errors plus
+/// a relative allowance `systematic` for known modelling error (tessellation).
+pub fn assert_agrees(what: &str, measured: (f64, f64), expected: f64, z: f64, systematic: f64) {
+    let (mean, error) = measured;
+    let tolerance = z * error + systematic * expected.abs();
+    assert!(
+        (mean - expected).abs() <= tolerance,
+        "{what}: measured {mean:.6} ± {error:.2e}, expected {expected:.6} (tolerance {tolerance:.2e}, z = {:.2})",
+        (mean - expected) / error.max(1e-30)
+    );
+}
