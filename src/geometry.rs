@@ -2,7 +2,7 @@
 //!
 //! * [`intersect_triangle`] is the watertight test of Woop, Benthin and Wald
 //!   (as in pbrt-v4): the ray is sheared so it runs along +z, the edge
-//!   functions are evaluated in 2D (in f64 when an f32 result is exactly zero),
+//!   functions are evaluated in 2D with exact signs (products in f64),
 //!   and a hit is accepted only when its t exceeds a bound on t's rounding
 //!   error. Rays through shared edges and vertices of a closed mesh hit one of
 //!   the triangles; none slips through.
@@ -113,13 +113,12 @@ pub fn barycentric_point_error(b: Vec3, p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
     gamma(7) * ((b.x * p0).abs() + (b.y * p1).abs() + (b.z * p2).abs())
 }
 
-/// `a·b − c·d` with one rounding (Kahan's algorithm with FMA).
+/// `a·b − c·d` for f32 inputs: the products are exact in f64 (24-bit
+/// mantissas), so the difference is correctly rounded and its sign is exact,
+/// which is what makes the edge tests watertight (and needs no FMA unit).
 #[inline]
 fn difference_of_products(a: f32, b: f32, c: f32, d: f32) -> f32 {
-    let cd = c * d;
-    let dop = a.mul_add(b, -cd);
-    let err = (-c).mul_add(d, cd);
-    dop + err
+    (a as f64 * b as f64 - c as f64 * d as f64) as f32
 }
 
 /// A ray–triangle hit: distance and barycentrics of (p0, p1, p2).
@@ -163,16 +162,10 @@ pub fn intersect_triangle(
     p2t.x += sx * p2t.z;
     p2t.y += sy * p2t.z;
 
-    // edge functions, in f64 when f32 cannot tell the sign
-    let mut e0 = difference_of_products(p1t.x, p2t.y, p1t.y, p2t.x);
-    let mut e1 = difference_of_products(p2t.x, p0t.y, p2t.y, p0t.x);
-    let mut e2 = difference_of_products(p0t.x, p1t.y, p0t.y, p1t.x);
-    if e0 == 0.0 || e1 == 0.0 || e2 == 0.0 {
-        let f = |a: f32, b: f32, c: f32, d: f32| (a as f64 * b as f64 - c as f64 * d as f64) as f32;
-        e0 = f(p1t.x, p2t.y, p1t.y, p2t.x);
-        e1 = f(p2t.x, p0t.y, p2t.y, p0t.x);
-        e2 = f(p0t.x, p1t.y, p0t.y, p1t.x);
-    }
+    // edge functions, with exact signs
+    let e0 = difference_of_products(p1t.x, p2t.y, p1t.y, p2t.x);
+    let e1 = difference_of_products(p2t.x, p0t.y, p2t.y, p0t.x);
+    let e2 = difference_of_products(p0t.x, p1t.y, p0t.y, p1t.x);
     if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0) {
         return None;
     }

@@ -116,10 +116,7 @@ impl RenderContext {
         let mut previous: Option<(Vec3, f32, bool)> = None; // (position, brdf pdf, delta)
         counts.camera += 1;
 
-        loop {
-            let Some(hit) = self.accel.closest_hit(&ray) else {
-                break;
-            };
+        while let Some(hit) = self.accel.closest_hit(&ray) {
             let term = Term::of_reflections(reflections).index();
             let wo = -ray.direction;
 

@@ -285,12 +285,12 @@ impl RenderSettings {
         if self.terms.is_empty() {
             return Err("no term selected".into());
         }
-        if let Some(r) = self.light_radius {
-            if !(r.is_finite() && r > 0.0) {
-                return Err(format!(
-                    "light radius {r} must be a positive number of metres"
-                ));
-            }
+        if let Some(r) = self.light_radius
+            && !(r.is_finite() && r > 0.0)
+        {
+            return Err(format!(
+                "light radius {r} must be a positive number of metres"
+            ));
         }
         if !(self.phong_exponent.is_finite() && (0.0..=1e6).contains(&self.phong_exponent)) {
             return Err(format!(

@@ -1,0 +1,178 @@
+//! Whole renders: term additivity, determinism across thread counts, and the
+//! command line's outputs and exit codes.
+
+mod common;
+
+use std::process::Command;
+
+use common::{render_film, small};
+use lumiere::scene::builtin;
+use lumiere::{LightMode, Term, TermSet};
+
+/// L0, L1 and L2 rendered one at a time with one seed sum to the L0,L1,L2
+/// render: each term's accumulator is filled by the same numbers either way.
+#[test]
+fn terms_rendered_apart_add_up_to_the_combined_render() {
+    for mode in [LightMode::Authored, LightMode::Point] {
+        let mut settings = small(48, 36, TermSet::COURSE);
+        settings.light_mode = mode;
+        let together = render_film(builtin::cornell(), &settings, 4).radiance(TermSet::COURSE);
+        let mut summed = vec![glam::Vec3::ZERO; together.len()];
+        for term in [Term::L0, Term::L1, Term::L2] {
+            settings.terms = TermSet::only(term);
+            let alone = render_film(builtin::cornell(), &settings, 4).radiance(TermSet::only(term));
+            for (s, a) in summed.iter_mut().zip(alone) {
+                *s += a;
+            }
+        }
+        let worst = together
+            .iter()
+            .zip(&summed)
+            .map(|(t, s)| (*t - *s).abs().max_element() / t.max_element().max(1e-3))
+            .fold(0.0f32, f32::max);
+        assert!(
+            worst < 1e-5,
+            "{mode}: separate terms differ from the combined render by {worst}"
+        );
+        assert!(together.iter().any(|p| p.max_element() > 0.0));
+    }
+}
+
+/// The film is bit-identical whatever the number of threads.
+#[test]
+fn same_seed_same_image_for_any_thread_count() {
+    let settings = small(40, 30, TermSet::ALL);
+    let render_with = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| render_film(builtin::cornell(), &settings, 3).radiance(TermSet::ALL))
+    };
+    let one = render_with(1);
+    for threads in [2, 3, 5] {
+        let other = render_with(threads);
+        let same = one
+            .iter()
+            .zip(&other)
+            .all(|(a, b)| a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits));
+        assert!(
+            same,
+            "{threads} threads gave a different image than 1 thread"
+        );
+    }
+    let mut reseeded = settings.clone();
+    reseeded.seed = 1;
+    let different = render_film(builtin::cornell(), &reseeded, 3).radiance(TermSet::ALL);
+    assert_ne!(one, different, "the seed must change the noise");
+}
+
+fn lumiere() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_lumiere"))
+}
+
+fn temp_path(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("lumiere-tests-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+#[test]
+fn cli_renders_png_and_exr_and_prints_a_summary() {
+    let png = temp_path("cornell.png");
+    let out = lumiere()
+        .args(["render", "cornell", "-o"])
+        .arg(&png)
+        .args([
+            "--width", "32", "--height", "24", "--spp", "2", "--terms", "all",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "stderr: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let summary = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        summary.contains("2 spp") && summary.contains("Mrays/s"),
+        "summary: {summary}"
+    );
+    let image = image::open(&png).unwrap();
+    assert_eq!((image.width(), image.height()), (32, 24));
+
+    let exr = temp_path("cornell.exr");
+    let out = lumiere()
+        .args(["render", "-o"])
+        .arg(&exr)
+        .args([
+            "--width", "16", "--height", "16", "--spp", "1", "--lights", "point", "--brdf", "phong",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "stderr: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let (w, h, pixels) = lumiere::export::load_exr(&exr).unwrap();
+    assert_eq!((w, h), (16, 16));
+    assert!(
+        pixels
+            .iter()
+            .all(|p| p.is_finite() && p.min_element() >= 0.0)
+    );
+}
+
+#[test]
+fn cli_rejects_bad_arguments_with_code_2() {
+    let out = temp_path("x.png");
+    for args in [
+        vec!["--terms", "L7"],
+        vec!["--lights", "lasers"],
+        vec!["--brdf", "velvet"],
+        vec!["--width", "0"],
+        vec!["--spp", "-3"],
+        vec!["--light-radius", "-1"],
+        vec!["--phong-exponent", "nan"],
+        vec!["--time", "0"],
+    ] {
+        let result = lumiere()
+            .args(["render", "-o"])
+            .arg(&out)
+            .args(&args)
+            .output()
+            .unwrap();
+        assert_eq!(result.status.code(), Some(2), "{args:?} should be refused");
+        assert!(!result.stderr.is_empty());
+    }
+    let result = lumiere()
+        .args(["render", "-o", "image.tiff"])
+        .output()
+        .unwrap();
+    assert_eq!(result.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&result.stderr).contains(".exr or .png"));
+}
+
+#[test]
+fn cli_reports_an_unloadable_scene_with_code_1() {
+    let bad = temp_path("broken.gltf");
+    std::fs::write(&bad, b"{ this is not json").unwrap();
+    let out = temp_path("y.png");
+    for scene in [bad.clone(), temp_path("missing.gltf")] {
+        let result = lumiere()
+            .arg("render")
+            .arg(&scene)
+            .arg("-o")
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert_eq!(result.status.code(), Some(1));
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(
+            stderr.contains(&*scene.to_string_lossy()),
+            "the error must name the file: {stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+}
