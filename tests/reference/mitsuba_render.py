@@ -1,0 +1,409 @@
+#!/usr/bin/env python3
+"""Render a lumiere glTF scene with Mitsuba 3, as an independent reference.
+
+Reads the glTF subset lumiere's test scenes use and renders it with
+Mitsuba's `path` integrator, without Russian roulette, to a linear RGB
+float EXR:
+
+    python tests/reference/mitsuba_render.py SCENE.gltf --max-depth 3 \
+        --spp 4096 --width 128 --height 128 --out OUT.exr \
+        [--variant llvm_ad_rgb|scalar_rgb] [--png PREVIEW.png]
+
+`--max-depth` counts path segments, as Mitsuba does: 1 = emitters seen
+directly (L0), 2 = L0 + direct lighting (L1), 3 = L0 + L1 + one indirect
+bounce (L2).
+
+Supported glTF subset (anything else is rejected, not approximated):
+* `.gltf` JSON with buffers as base64 data URIs or files beside it;
+* the default scene's node tree, with TRS or `matrix` transforms;
+* indexed or non-indexed triangle meshes (mode 4), POSITION and
+  optional NORMAL;
+* metallic-roughness materials without textures: metallic 0 and
+  roughness 1 -> Lambert (`twosided` `diffuse`, reflectance =
+  baseColor); metallic 1 and roughness 0 -> perfect mirror (`twosided`
+  `conductor`, `material: none`, specular_reflectance = baseColor);
+* emission: emissiveFactor x KHR_materials_emissive_strength is the
+  radiance of a one-sided `area` emitter on the front face (counter-
+  clockwise winding); double-sided emitters are rejected;
+* KHR_lights_punctual point lights (`point`, intensity = color x
+  intensity, W/sr) and directional lights (`directional`, irradiance =
+  color x intensity, along the node's -Z);
+* the first camera (in node order) with a perspective projection: yfov,
+  looking down its -Z. Without a camera, the scene is rejected.
+
+The pixel filter is a box (each sample uniform inside its pixel), as in
+lumiere. The llvm variant needs a libLLVM shared library: set
+DRJIT_LIBLLVM_PATH, or let this script look for one in the usual
+Debian places.
+"""
+
+import argparse
+import base64
+import glob
+import json
+import math
+import os
+import re
+import sys
+import time
+
+import numpy as np
+
+
+# --------------------------------------------------------------------------
+# glTF reading
+# --------------------------------------------------------------------------
+
+_COMPONENT = {5120: np.int8, 5121: np.uint8, 5122: np.int16, 5123: np.uint16,
+              5125: np.uint32, 5126: np.float32}
+_NCOMP = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}
+
+
+class GltfError(Exception):
+    pass
+
+
+class Gltf:
+    def __init__(self, path):
+        if path.lower().endswith(".glb"):
+            raise GltfError("binary .glb files are not supported; use .gltf")
+        with open(path, encoding="utf-8") as f:
+            self.j = json.load(f)
+        self.dir = os.path.dirname(os.path.abspath(path))
+        self._buffers = {}
+        for ext in self.j.get("extensionsRequired", []):
+            if ext not in ("KHR_lights_punctual", "KHR_materials_emissive_strength"):
+                raise GltfError(f"required extension {ext} is not supported")
+
+    def buffer(self, i):
+        if i not in self._buffers:
+            b = self.j["buffers"][i]
+            uri = b.get("uri")
+            if uri is None:
+                raise GltfError("buffers without a uri (GLB) are not supported")
+            if uri.startswith("data:"):
+                m = re.match(r"data:[^;,]*;base64,(.*)", uri, re.S)
+                if not m:
+                    raise GltfError("only base64 data URIs are supported")
+                data = base64.b64decode(m.group(1))
+            else:
+                from urllib.parse import unquote
+                with open(os.path.join(self.dir, unquote(uri)), "rb") as f:
+                    data = f.read()
+            if len(data) < b["byteLength"]:
+                raise GltfError(f"buffer {i} is shorter than its byteLength")
+            self._buffers[i] = data
+        return self._buffers[i]
+
+    def accessor(self, i):
+        a = self.j["accessors"][i]
+        if "sparse" in a:
+            raise GltfError("sparse accessors are not supported")
+        dtype = np.dtype(_COMPONENT[a["componentType"]])
+        n = _NCOMP[a["type"]]
+        count = a["count"]
+        if "bufferView" not in a:
+            return np.zeros((count, n) if n > 1 else count, dtype=dtype)
+        v = self.j["bufferViews"][a["bufferView"]]
+        data = self.buffer(v["buffer"])
+        start = v.get("byteOffset", 0) + a.get("byteOffset", 0)
+        elem = dtype.itemsize * n
+        stride = v.get("byteStride", elem) or elem
+        raw = np.frombuffer(data, dtype=np.uint8, count=stride * (count - 1) + elem, offset=start)
+        rows = np.lib.stride_tricks.as_strided(raw, shape=(count, elem), strides=(stride, 1))
+        out = np.ascontiguousarray(rows).view(dtype).reshape(count, n)
+        if a.get("normalized"):
+            raise GltfError("normalized accessors are not supported here")
+        return out if n > 1 else out[:, 0]
+
+
+def _quat_to_mat3(q):
+    x, y, z, w = q
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+    ])
+
+
+def node_local_matrix(node):
+    if "matrix" in node:
+        return np.array(node["matrix"], dtype=np.float64).reshape(4, 4).T  # column-major
+    t = np.array(node.get("translation", [0, 0, 0]), dtype=np.float64)
+    r = np.array(node.get("rotation", [0, 0, 0, 1]), dtype=np.float64)
+    s = np.array(node.get("scale", [1, 1, 1]), dtype=np.float64)
+    m = np.eye(4)
+    m[:3, :3] = _quat_to_mat3(r / np.linalg.norm(r)) @ np.diag(s)
+    m[:3, 3] = t
+    return m
+
+
+def world_nodes(g):
+    """(node index, world matrix) in depth-first order of the default scene."""
+    j = g.j
+    nodes = j.get("nodes", [])
+    if "scenes" in j and j["scenes"]:
+        roots = j["scenes"][j.get("scene", 0)].get("nodes", [])
+    else:
+        children = {c for n in nodes for c in n.get("children", [])}
+        roots = [i for i in range(len(nodes)) if i not in children]
+    out = []
+
+    def visit(i, parent):
+        m = parent @ node_local_matrix(nodes[i])
+        out.append((i, m))
+        for c in nodes[i].get("children", []):
+            visit(c, m)
+    for r in roots:
+        visit(r, np.eye(4))
+    return out
+
+
+# --------------------------------------------------------------------------
+# Scene conversion
+# --------------------------------------------------------------------------
+
+def material_info(g, index):
+    """Returns (kind, rgb, emission rgb or None, double_sided)."""
+    if index is None:
+        mat = {}  # glTF default material: white, metallic 1, roughness 1
+    else:
+        mat = g.j["materials"][index]
+    name = mat.get("name", f"material {index}")
+    pbr = mat.get("pbrMetallicRoughness", {})
+    for key in ("baseColorTexture", "metallicRoughnessTexture"):
+        if key in pbr:
+            raise GltfError(f"{name}: textures are not supported")
+    for key in ("emissiveTexture", "normalTexture", "occlusionTexture"):
+        if key in mat:
+            raise GltfError(f"{name}: {key} is not supported")
+    base = [float(c) for c in pbr.get("baseColorFactor", [1, 1, 1, 1])[:3]]
+    metallic = float(pbr.get("metallicFactor", 1.0))
+    roughness = float(pbr.get("roughnessFactor", 1.0))
+    if metallic == 0.0 and roughness == 1.0:
+        kind = "lambert"
+    elif metallic == 1.0 and roughness == 0.0:
+        kind = "mirror"
+    else:
+        raise GltfError(f"{name}: metallic {metallic} roughness {roughness} is neither Lambert "
+                        "(0, 1) nor a mirror (1, 0); Mitsuba has no equivalent of lumiere's Phong")
+    strength = float(mat.get("extensions", {}).get("KHR_materials_emissive_strength", {})
+                     .get("emissiveStrength", 1.0))
+    emission = [float(c) * strength for c in mat.get("emissiveFactor", [0, 0, 0])]
+    if max(emission) <= 0.0:
+        emission = None
+    return kind, base, emission, bool(mat.get("doubleSided", False))
+
+
+def bsdf_dict(kind, rgb):
+    color = {"type": "rgb", "value": rgb}
+    if kind == "lambert":
+        inner = {"type": "diffuse", "reflectance": color}
+    else:
+        inner = {"type": "conductor", "material": "none", "specular_reflectance": color}
+    return {"type": "twosided", "material": inner}
+
+
+def build_mesh(mi, name, positions, normals, faces, bsdf, emission):
+    """A Mitsuba mesh from world-space arrays. Emitting meshes get no vertex
+    normals, so that Mitsuba's emitting side is the one given by the winding
+    (its face normal is cross(p1 - p0, p2 - p0), glTF's front face)."""
+    props = mi.Properties()
+    props["bsdf"] = mi.load_dict(bsdf)
+    if emission is not None:
+        props["emitter"] = mi.load_dict({"type": "area", "radiance": {"type": "rgb", "value": emission}})
+        normals = None
+    mesh = mi.Mesh(name, len(positions), len(faces), props=props, has_vertex_normals=normals is not None)
+    params = mi.traverse(mesh)
+
+    def put(key, array, dtype):
+        # The buffers' own array types (dynamic arrays, also in scalar variants).
+        params[key] = type(params[key])(np.ascontiguousarray(array, dtype=dtype).ravel())
+    put("vertex_positions", positions, np.float32)
+    put("faces", faces, np.uint32)
+    if normals is not None:
+        put("vertex_normals", normals, np.float32)
+    params.update()
+    return mesh
+
+
+def convert(mi, g, width, height, spp, max_depth, verbose=True):
+    j = g.j
+    scene = {"type": "scene"}
+    camera = None
+    n_emitters = 0
+    lights = j.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
+    for ni, world in world_nodes(g):
+        node = j["nodes"][ni]
+        nname = node.get("name", f"node{ni}")
+        if "camera" in node and camera is None:
+            camera = (node["camera"], world, nname)
+        if "mesh" in node:
+            mesh = j["meshes"][node["mesh"]]
+            lin = world[:3, :3]
+            flip = np.linalg.det(lin) < 0  # a mirroring transform swaps the front face
+            nmat = np.linalg.inv(lin).T
+            for pi, prim in enumerate(mesh["primitives"]):
+                if prim.get("mode", 4) != 4:
+                    raise GltfError(f"{nname}: only triangle lists (mode 4) are supported")
+                pos = g.accessor(prim["attributes"]["POSITION"]).astype(np.float64)
+                pos = pos @ lin.T + world[:3, 3]
+                if "indices" in prim:
+                    idx = g.accessor(prim["indices"]).astype(np.int64)
+                else:
+                    idx = np.arange(len(pos))
+                faces = idx.reshape(-1, 3)
+                if flip:
+                    faces = faces[:, [0, 2, 1]]
+                nrm = None
+                if "NORMAL" in prim["attributes"]:
+                    nrm = g.accessor(prim["attributes"]["NORMAL"]).astype(np.float64) @ nmat.T
+                    nrm /= np.linalg.norm(nrm, axis=1, keepdims=True)
+                kind, rgb, emission, double_sided = material_info(g, prim.get("material"))
+                if emission is not None:
+                    if double_sided:
+                        raise GltfError(f"{nname}: double-sided emitters are not supported "
+                                        "(Mitsuba's area emitter is one-sided)")
+                    n_emitters += 1
+                key = f"mesh{ni}_{pi}"
+                scene[key] = build_mesh(mi, f"{nname}/{pi}", pos, nrm, faces, bsdf_dict(kind, rgb), emission)
+                if verbose:
+                    print(f"  mesh {nname!r}: {len(faces)} triangles, {kind} {rgb}"
+                          + (f", emits {emission}" if emission else ""), file=sys.stderr)
+        ext = node.get("extensions", {}).get("KHR_lights_punctual")
+        if ext is not None:
+            light = lights[ext["light"]]
+            value = [float(c) * float(light.get("intensity", 1.0)) for c in light.get("color", [1, 1, 1])]
+            kind = light["type"]
+            if kind == "point":
+                scene[f"light{ni}"] = {"type": "point", "position": [float(x) for x in world[:3, 3]],
+                                       "intensity": {"type": "rgb", "value": value}}
+            elif kind == "directional":
+                d = world[:3, :3] @ np.array([0.0, 0.0, -1.0])
+                scene[f"light{ni}"] = {"type": "directional",
+                                       "direction": [float(x) for x in d / np.linalg.norm(d)],
+                                       "irradiance": {"type": "rgb", "value": value}}
+            else:
+                raise GltfError(f"{nname}: {kind} lights are not supported")
+            n_emitters += 1
+            if verbose:
+                print(f"  {kind} light {nname!r}: {value} at {world[:3, 3].tolist()}", file=sys.stderr)
+    if camera is None:
+        raise GltfError("the scene has no camera")
+    if n_emitters == 0:
+        print("warning: the scene has no emitter", file=sys.stderr)
+
+    cam_index, cam_world, cam_name = camera
+    cam = j["cameras"][cam_index]
+    if cam.get("type") != "perspective":
+        raise GltfError("only perspective cameras are supported")
+    persp = cam["perspective"]
+    yfov = float(persp["yfov"])
+    aspect = persp.get("aspectRatio")
+    if aspect is not None and abs(aspect - width / height) > 1e-3:
+        print(f"warning: the camera's aspectRatio {aspect} differs from {width}x{height}; "
+              "the film's aspect ratio is used, yfov kept", file=sys.stderr)
+    # Mitsuba's camera looks down its +Z with +X to the image's left; glTF's
+    # looks down -Z with +X to the right: a 180 degree turn about Y maps one
+    # onto the other (no mirroring).
+    to_world = cam_world @ np.diag([-1.0, 1.0, -1.0, 1.0])
+    # Remove any scale from the camera's frame (glTF cameras ignore it).
+    to_world[:3, :3] = to_world[:3, :3] / np.linalg.norm(to_world[:3, :3], axis=0)
+    znear = float(persp.get("znear", 1e-3))
+    zfar = float(persp.get("zfar", 1e4))
+    if verbose:
+        print(f"  camera {cam_name!r}: yfov {math.degrees(yfov):.4f} deg, at {cam_world[:3, 3].tolist()}, "
+              f"looking along {(-cam_world[:3, 2]).tolist()}", file=sys.stderr)
+    scene["sensor"] = {
+        "type": "perspective",
+        "fov_axis": "y",
+        "fov": math.degrees(yfov),
+        "near_clip": znear,
+        "far_clip": zfar,
+        "to_world": mi.ScalarTransform4f(to_world.tolist()),
+        "sampler": {"type": "independent", "sample_count": spp},
+        "film": {"type": "hdrfilm", "width": width, "height": height,
+                 "pixel_format": "rgb", "component_format": "float32",
+                 "rfilter": {"type": "box"}},
+    }
+    scene["integrator"] = {"type": "path", "max_depth": max_depth,
+                           "rr_depth": max(100, max_depth + 1), "hide_emitters": False}
+    return scene
+
+
+# --------------------------------------------------------------------------
+
+def find_libllvm():
+    cands = []
+    for pat in ("/usr/lib/x86_64-linux-gnu/libLLVM*.so*", "/usr/lib/aarch64-linux-gnu/libLLVM*.so*",
+                "/usr/lib/llvm-*/lib/libLLVM*.so*", "/usr/lib64/libLLVM*.so*", "/usr/local/lib/libLLVM*.so*"):
+        cands += glob.glob(pat)
+
+    def version(p):
+        m = re.search(r"(\d+)(?:\.(\d+))?", os.path.basename(p)) or re.search(r"llvm-(\d+)", p)
+        return tuple(int(x) for x in m.groups() if x) if m else (0,)
+    cands.sort(key=version, reverse=True)
+    return cands[0] if cands else None
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("scene", help="lumiere glTF scene (.gltf)")
+    ap.add_argument("--max-depth", type=int, required=True,
+                    help="maximum number of path segments (1 = L0, 2 = L0+L1, 3 = L0+L1+L2)")
+    ap.add_argument("--spp", type=int, default=4096, help="samples per pixel")
+    ap.add_argument("--width", type=int, default=128)
+    ap.add_argument("--height", type=int, default=128)
+    ap.add_argument("--out", required=True, help="output EXR (linear RGB, float32)")
+    ap.add_argument("--variant", default="llvm_ad_rgb", choices=["llvm_ad_rgb", "scalar_rgb"])
+    ap.add_argument("--spp-per-pass", type=int, default=None,
+                    help="split the samples into passes of this many (default: 256 for llvm, all for scalar); "
+                         "passes use different seeds and are averaged")
+    ap.add_argument("--seed", type=int, default=0, help="seed of the first pass")
+    ap.add_argument("--png", help="also write a preview PNG (clamped, sRGB)")
+    ap.add_argument("--quiet", action="store_true")
+    args = ap.parse_args(argv)
+
+    if args.variant.startswith("llvm") and not os.environ.get("DRJIT_LIBLLVM_PATH"):
+        lib = find_libllvm()
+        if lib:
+            os.environ["DRJIT_LIBLLVM_PATH"] = lib
+    import mitsuba as mi
+    mi.set_variant(args.variant)
+
+    g = Gltf(args.scene)
+    t0 = time.perf_counter()
+    scene_dict = convert(mi, g, args.width, args.height, args.spp, args.max_depth, verbose=not args.quiet)
+    scene = mi.load_dict(scene_dict)
+    t1 = time.perf_counter()
+
+    per_pass = args.spp_per_pass or (256 if args.variant.startswith("llvm") else args.spp)
+    per_pass = max(1, min(per_pass, args.spp))
+    if args.spp % per_pass:
+        ap.error(f"--spp {args.spp} is not a multiple of the samples per pass {per_pass}")
+    passes = args.spp // per_pass
+    acc = None
+    for k in range(passes):
+        img = np.array(mi.render(scene, spp=per_pass, seed=args.seed + k), dtype=np.float64)
+        acc = img if acc is None else acc + img
+    img = (acc / passes).astype(np.float32)
+    t2 = time.perf_counter()
+
+    os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
+    bmp = mi.Bitmap(img, pixel_format=mi.Bitmap.PixelFormat.RGB)
+    bmp.write(args.out)
+    if args.png:
+        bmp.convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.UInt8, srgb_gamma=True).write(args.png)
+    mean = img.reshape(-1, 3).mean(axis=0)
+    print(f"{args.out}: {args.width}x{args.height}, {args.spp} spp ({passes} passes), max_depth {args.max_depth}, "
+          f"{args.variant}; load {t1 - t0:.2f} s, render {t2 - t1:.2f} s; "
+          f"mean RGB {mean[0]:.6g} {mean[1]:.6g} {mean[2]:.6g}, overall {mean.mean():.6g}")
+    return 0
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main())
+    except GltfError as e:
+        print(f"error: {e}", file=sys.stderr)
+        sys.exit(2)
