@@ -17,7 +17,7 @@
 
 use std::time::Duration;
 
-use glam::{UVec2, Vec3, Vec3A};
+use glam::{UVec2, Vec3, Vec3A, Vec4};
 use obvhs::cwbvh::node::{CwBvhNode, extract_byte64};
 use obvhs::{BvhBuildParams, cwbvh::CwBvh, cwbvh::builder::build_cwbvh_from_tris};
 
@@ -81,7 +81,7 @@ impl Accel {
         } else {
             build_cwbvh_from_tris(
                 &tris,
-                BvhBuildParams::medium_build(),
+                BvhBuildParams::fast_build(),
                 &mut Duration::default(),
             )
         };
@@ -266,34 +266,41 @@ pub fn intersect_sphere(ray: &Ray, sphere: &Sphere, t_max: f32) -> Option<f32> {
 fn intersect_node(node: &CwBvhNode, ray: &obvhs::ray::Ray, oct_inv4: u32) -> u32 {
     let a = node.compute_extent() * ray.inv_direction;
     let b = (Vec3A::from(node.p) - ray.origin) * ray.inv_direction;
-    let (abs_a, abs_b) = (a.abs(), b.abs());
     let slack = gamma(6);
     let t_max_ray = ray.tmax * (1.0 + 2.0 * gamma(3));
     // the sign of the inverse, not of the direction: −0.0 has a negative inverse
     let negative = ray.inv_direction.cmplt(Vec3A::ZERO);
+    let planes = [
+        (&node.child_min_x, &node.child_max_x, negative.test(0), a.x, b.x),
+        (&node.child_min_y, &node.child_max_y, negative.test(1), a.y, b.y),
+        (&node.child_min_z, &node.child_max_z, negative.test(2), a.z, b.z),
+    ];
     let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
     let mut hit_mask = 0;
-    for child in 0..8 {
-        let lo = Vec3A::new(
-            node.child_min_x[child] as f32,
-            node.child_min_y[child] as f32,
-            node.child_min_z[child] as f32,
-        );
-        let hi = Vec3A::new(
-            node.child_max_x[child] as f32,
-            node.child_max_y[child] as f32,
-            node.child_max_z[child] as f32,
-        );
-        let near = Vec3A::select(negative, hi, lo);
-        let far = Vec3A::select(negative, lo, hi);
-        let t_near = near * a + b - slack * (near * abs_a + abs_b);
-        let t_far = far * a + b + slack * (far * abs_a + abs_b);
-        let t_min = t_near.max_element().max(0.0);
-        let t_max = t_far.min_element().min(t_max_ray);
-        if t_min <= t_max {
-            let child_bits = extract_byte64(child_bits8, child);
-            let bit_index = extract_byte64(bit_index8, child);
-            hit_mask |= child_bits << bit_index;
+    // four children at a time: each lane is one child's slab interval
+    for group in 0..2 {
+        let mut t_min = Vec4::ZERO;
+        let mut t_max = Vec4::splat(t_max_ray);
+        for (lo, hi, negative, a, b) in planes {
+            let (near, far) = if negative { (hi, lo) } else { (lo, hi) };
+            let load = |q: &[u8; 8]| {
+                let q = &q[4 * group..4 * group + 4];
+                Vec4::new(q[0] as f32, q[1] as f32, q[2] as f32, q[3] as f32)
+            };
+            let (near, far) = (load(near), load(far));
+            let t_near = near * a + b - slack * (near * a.abs() + b.abs());
+            let t_far = far * a + b + slack * (far * a.abs() + b.abs());
+            t_min = t_min.max(t_near);
+            t_max = t_max.min(t_far);
+        }
+        let hits = t_min.cmple(t_max).bitmask();
+        for lane in 0..4 {
+            if hits & (1 << lane) != 0 {
+                let child = 4 * group + lane;
+                let child_bits = extract_byte64(child_bits8, child);
+                let bit_index = extract_byte64(bit_index8, child);
+                hit_mask |= child_bits << bit_index;
+            }
         }
     }
     hit_mask
