@@ -271,9 +271,27 @@ fn intersect_node(node: &CwBvhNode, ray: &obvhs::ray::Ray, oct_inv4: u32) -> u32
     // the sign of the inverse, not of the direction: −0.0 has a negative inverse
     let negative = ray.inv_direction.cmplt(Vec3A::ZERO);
     let planes = [
-        (&node.child_min_x, &node.child_max_x, negative.test(0), a.x, b.x),
-        (&node.child_min_y, &node.child_max_y, negative.test(1), a.y, b.y),
-        (&node.child_min_z, &node.child_max_z, negative.test(2), a.z, b.z),
+        (
+            &node.child_min_x,
+            &node.child_max_x,
+            negative.test(0),
+            a.x,
+            b.x,
+        ),
+        (
+            &node.child_min_y,
+            &node.child_max_y,
+            negative.test(1),
+            a.y,
+            b.y,
+        ),
+        (
+            &node.child_min_z,
+            &node.child_max_z,
+            negative.test(2),
+            a.z,
+            b.z,
+        ),
     ];
     let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
     let mut hit_mask = 0;

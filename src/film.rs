@@ -4,7 +4,9 @@
 //! channel, so 10⁶ samples add without drift) and, for the noise views,
 //! Welford's running mean and M2 of the sample luminance, from which
 //!
-//!     mean = Σ L / N,   variance = M2 / (N − 1),   standard error = √(variance / N).
+//! ```text
+//! mean = Σ L / N,   variance = M2 / (N − 1),   standard error = √(variance / N).
+//! ```
 //!
 //! A term's buffers exist only once the term has been rendered; each term
 //! counts its own samples per pixel, so a term switched on later starts from

@@ -2,7 +2,9 @@
 //!
 //! Direct lighting at p from a source s, in solid angle:
 //!
-//!     L_direct(p, ωo) = ∫ L_e(q, −ω) f_r(p, ω → ωo) |cos θ| dω
+//! ```text
+//! L_direct(p, ωo) = ∫ L_e(q, −ω) f_r(p, ω → ωo) |cos θ| dω
+//! ```
 //!
 //! is estimated by drawing one light (probability ∝ power, alias table) and
 //! one point or direction on it; a [`LightSample`] carries the incident

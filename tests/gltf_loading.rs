@@ -1,0 +1,572 @@
+//! glTF loading: small handwritten files in `tests/data/gltf` (their shared
+//! buffer is described in that folder's README), hand-built GLB bytes, and the
+//! shared corpus of valid and invalid files (`../shared/gltf-corpus`).
+
+use std::path::{Path, PathBuf};
+
+use glam::{Vec2, Vec3};
+use lumiere::scene::gltf::{load, load_slice};
+use lumiere::scene::texture::srgb_to_linear;
+use lumiere::scene::{Material, Projection, PunctualKind, Scene, Triangle, WrapMode};
+
+fn data_path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/gltf")
+        .join(name)
+}
+
+fn load_data(name: &str) -> Scene {
+    load(&data_path(name)).unwrap_or_else(|e| panic!("{name} should load: {e}"))
+}
+
+fn load_error(name: &str) -> String {
+    match load(&data_path(name)) {
+        Ok(_) => panic!("{name} should not load"),
+        Err(e) => e.to_string(),
+    }
+}
+
+fn read_data(name: &str) -> String {
+    std::fs::read_to_string(data_path(name)).unwrap()
+}
+
+#[track_caller]
+fn assert_close(actual: Vec3, expected: Vec3) {
+    assert!(
+        (actual - expected).length() < 1e-5,
+        "{actual} is not {expected}"
+    );
+}
+
+fn object_id(scene: &Scene, name: &str) -> u32 {
+    let id = scene.objects.iter().position(|o| o.name == name);
+    id.unwrap_or_else(|| panic!("no object {name}")) as u32
+}
+
+fn triangles_of<'s>(scene: &'s Scene, name: &str) -> Vec<&'s Triangle> {
+    let object = object_id(scene, name);
+    scene
+        .triangles
+        .iter()
+        .filter(|t| t.object == object)
+        .collect()
+}
+
+fn corners(scene: &Scene, triangle: &Triangle) -> [Vec3; 3] {
+    triangle.vertices.map(|v| scene.positions[v as usize])
+}
+
+fn geometric_normal(scene: &Scene, triangle: &Triangle) -> Vec3 {
+    let [a, b, c] = corners(scene, triangle);
+    (b - a).cross(c - a).normalize()
+}
+
+fn assert_pool_lengths_match(scene: &Scene) {
+    let n = scene.positions.len();
+    assert_eq!(scene.normals.len(), n);
+    assert_eq!(scene.uv0.len(), n);
+    assert_eq!(scene.uv1.len(), n);
+}
+
+#[test]
+fn node_hierarchy_composes_trs_and_matrices() {
+    let scene = load_data("hierarchy.gltf");
+    assert_eq!(scene.name, "hierarchy.gltf");
+    // NotInScene is not reachable from the default scene
+    assert_eq!(scene.objects.len(), 2);
+    assert_pool_lengths_match(&scene);
+
+    // translate (10,0,0) · rotate 90° about Z · scale 2 · matrix translate (1,0,0)
+    let child = triangles_of(&scene, "Child");
+    assert_eq!(child.len(), 1);
+    let [a, b, c] = corners(&scene, child[0]);
+    assert_close(a, Vec3::new(10.0, 4.0, 0.0));
+    assert_close(b, Vec3::new(8.0, 2.0, 0.0));
+    assert_close(c, Vec3::new(10.0, 2.0, 2.0));
+
+    // column-major matrix: x += 0.5 y, then translate (0,0,-3)
+    let [a, b, c] = corners(&scene, triangles_of(&scene, "Sheared")[0]);
+    assert_close(a, Vec3::new(1.0, 0.0, -3.0));
+    assert_close(b, Vec3::new(0.5, 1.0, -3.0));
+    assert_close(c, Vec3::new(0.0, 0.0, -2.0));
+}
+
+#[test]
+fn cameras_come_in_walk_order_without_scale() {
+    let scene = load_data("cameras.gltf");
+    let names: Vec<&str> = scene.cameras.iter().map(|c| c.name.as_str()).collect();
+    assert_eq!(names, ["Narrow", "Wide", "Plan"]);
+
+    let first = scene.default_camera();
+    assert_eq!(first.name, "Narrow");
+    assert_eq!(first.projection, Projection::Perspective { yfov: 0.5 });
+    let eye = first.world_from_camera;
+    assert_close(eye.translation.into(), Vec3::new(0.0, 1.0, 5.0));
+    // rotated 90° about Y: looks down −X, up stays +Y; the node's scale 3 is gone
+    assert_close(eye.transform_vector3(Vec3::NEG_Z), Vec3::NEG_X);
+    assert_close(eye.transform_vector3(Vec3::Y), Vec3::Y);
+    assert_close(eye.transform_vector3(Vec3::X), Vec3::NEG_Z);
+
+    let plan = &scene.cameras[2];
+    assert_eq!(
+        plan.projection,
+        Projection::Orthographic { half_height: 3.0 }
+    );
+    assert_close(
+        plan.world_from_camera.transform_vector3(Vec3::NEG_Z),
+        Vec3::NEG_Y,
+    );
+    assert_close(
+        plan.world_from_camera.translation.into(),
+        Vec3::new(0.0, 10.0, 0.0),
+    );
+}
+
+#[test]
+fn normals_are_transformed_by_the_inverse_transpose() {
+    let scene = load_data("normals.gltf");
+    assert_pool_lengths_match(&scene);
+
+    let flat = triangles_of(&scene, "Flat");
+    assert_eq!(flat.len(), 1);
+    assert!(!flat[0].smooth, "no NORMAL attribute: geometric normal");
+    assert_close(corners(&scene, flat[0])[0], Vec3::new(-2.0, 0.0, 0.0));
+
+    // scale (2,1,1) maps the normal (1,1,1) to (1/2,1,1) ∝ (1,2,2)/3, not (2,1,1)
+    let smooth = triangles_of(&scene, "Smooth");
+    assert!(smooth[0].smooth);
+    for v in smooth[0].vertices {
+        assert_close(scene.normals[v as usize], Vec3::new(1.0, 2.0, 2.0) / 3.0);
+    }
+    assert_close(
+        geometric_normal(&scene, smooth[0]),
+        Vec3::new(1.0, 2.0, 2.0) / 3.0,
+    );
+
+    let [a, b, _] = smooth[0].vertices.map(|v| v as usize);
+    assert_eq!(scene.uv0[b], Vec2::new(1.0, 0.0));
+    assert_eq!(scene.uv1[a], Vec2::new(0.25, 0.5));
+    let flat_vertex = flat[0].vertices[1] as usize;
+    assert_eq!(scene.uv0[flat_vertex], Vec2::ZERO, "absent UVs are zero");
+}
+
+#[test]
+fn primitives_without_indices_strips_and_fans_become_triangles() {
+    let scene = load_data("modes.gltf");
+    // list (1) + strip (2) + fan (2); lines and points skipped
+    assert_eq!(scene.triangles.len(), 5);
+    assert_eq!(scene.objects.len(), 3);
+    assert_pool_lengths_match(&scene);
+
+    let local = |t: &Triangle| {
+        let first = t.vertices.iter().min().unwrap();
+        let base = scene
+            .triangles
+            .iter()
+            .filter(|u| u.object == t.object)
+            .flat_map(|u| u.vertices)
+            .min()
+            .unwrap()
+            .min(*first);
+        t.vertices.map(|v| v - base)
+    };
+    let by_object = |object: u32| -> Vec<[u32; 3]> {
+        scene
+            .triangles
+            .iter()
+            .filter(|t| t.object == object)
+            .map(local)
+            .collect()
+    };
+    assert_eq!(by_object(0), [[0, 1, 2]]);
+    assert_eq!(
+        by_object(1),
+        [[0, 1, 2], [1, 3, 2]],
+        "strip keeps the winding"
+    );
+    assert_eq!(by_object(2), [[1, 2, 0], [2, 3, 0]], "fan around vertex 0");
+    for t in scene.triangles.iter().filter(|t| t.object == 1) {
+        assert_close(geometric_normal(&scene, t), Vec3::Z);
+    }
+
+    let warned = |needle: &str| scene.warnings.iter().any(|w| w.contains(needle));
+    assert!(
+        warned("mesh \"Modes\" primitive 3: mode LINES"),
+        "{:?}",
+        scene.warnings
+    );
+    assert!(
+        warned("mesh \"Modes\" primitive 4: mode POINTS"),
+        "{:?}",
+        scene.warnings
+    );
+}
+
+#[test]
+fn punctual_lights_take_position_direction_and_intensity_from_their_nodes() {
+    let scene = load_data("lights.gltf");
+    assert_eq!(scene.lights.len(), 3);
+    let light = |name: &str| scene.lights.iter().find(|l| l.name == name).unwrap();
+
+    let bulb = light("Bulb");
+    assert_eq!(bulb.kind, PunctualKind::Point);
+    assert_close(bulb.position, Vec3::new(1.0, 2.0, 4.0));
+    assert_close(bulb.intensity, Vec3::new(8.0, 4.0, 2.0));
+
+    // rotated 90° about X under a non-uniform scale: −Z points to +Y, unit length
+    let lamp = light("Lamp");
+    assert_eq!(
+        lamp.kind,
+        PunctualKind::Spot {
+            inner_cone_angle: 0.2,
+            outer_cone_angle: 0.6
+        }
+    );
+    assert_close(lamp.position, Vec3::new(0.0, 4.0, 1.0));
+    assert_close(lamp.direction, Vec3::Y);
+    assert_close(lamp.intensity, Vec3::splat(20.0));
+
+    let sun = light("Sun");
+    assert_eq!(sun.kind, PunctualKind::Directional);
+    assert_close(sun.direction, Vec3::NEG_Y);
+    assert_close(sun.intensity, Vec3::new(3.0, 3.0, 1.5));
+}
+
+#[test]
+fn negative_light_intensity_is_refused() {
+    let text = read_data("lights.gltf").replace("\"intensity\": 8", "\"intensity\": -8");
+    let error = load_slice(text.as_bytes(), "lights.gltf", None).unwrap_err();
+    assert!(error.to_string().contains("light \"Bulb\""), "{error}");
+}
+
+#[test]
+fn materials_map_factors_emission_and_textures() {
+    let scene = load_data("materials.gltf");
+    // materials are converted on first use: "Unused" is not
+    assert_eq!(scene.materials.len(), 3);
+    assert_eq!(scene.textures.len(), 2, "one texture per glTF texture used");
+
+    let lamp =
+        &scene.materials[scene.objects[object_id(&scene, "Lamp") as usize].material as usize];
+    assert_eq!(lamp.name, "Glow");
+    assert_close(lamp.emission, Vec3::new(10.0, 5.0, 0.0));
+    assert!(lamp.is_emissive());
+    let emissive = lamp.emission_texture.expect("emissive texture");
+    assert_eq!(emissive.uv_set, 0);
+    let grey = &scene.textures[emissive.texture as usize];
+    assert_eq!((grey.width, grey.height), (1, 1));
+    assert_close(grey.texels[0], Vec3::splat(srgb_to_linear(188.0 / 255.0)));
+
+    let panel =
+        &scene.materials[scene.objects[object_id(&scene, "Panel") as usize].material as usize];
+    assert_eq!(panel.name, "Painted");
+    assert_close(panel.base_color, Vec3::new(0.5, 0.25, 1.0));
+    assert_eq!(panel.metallic, 0.25);
+    assert_eq!(panel.roughness, 0.75);
+    assert!(panel.double_sided);
+    assert!(!lamp.double_sided);
+    assert_eq!(panel.emission, Vec3::ZERO);
+    let base = panel.base_color_texture.expect("base colour texture");
+    assert_eq!(base.uv_set, 1);
+    let stripe = &scene.textures[base.texture as usize];
+    assert_eq!((stripe.width, stripe.height), (2, 1));
+    assert_close(
+        stripe.texels[0],
+        Vec3::new(1.0, srgb_to_linear(128.0 / 255.0), 0.0),
+    );
+    assert_close(
+        stripe.texels[1],
+        Vec3::new(0.0, srgb_to_linear(64.0 / 255.0), 1.0),
+    );
+    assert!((stripe.texels[0].y - 0.215_860_5).abs() < 1e-5);
+    assert_eq!(stripe.wrap_s, WrapMode::ClampToEdge);
+    assert_eq!(stripe.wrap_t, WrapMode::MirroredRepeat);
+    assert_eq!(grey.wrap_s, WrapMode::Repeat, "no sampler: repeat");
+    assert!(
+        scene
+            .warnings
+            .iter()
+            .any(|w| w.contains("material \"Painted\": metallicRoughnessTexture")),
+        "{:?}",
+        scene.warnings
+    );
+
+    let bare =
+        &scene.materials[scene.objects[object_id(&scene, "Bare") as usize].material as usize];
+    let default = Material::default();
+    assert_eq!(bare.name, default.name);
+    assert_eq!((bare.metallic, bare.roughness), (1.0, 1.0));
+    assert_eq!(bare.base_color, Vec3::ONE);
+}
+
+#[test]
+fn embedded_images_load_from_bytes_without_a_base_directory() {
+    let bytes = std::fs::read(data_path("materials.gltf")).unwrap();
+    let scene = load_slice(&bytes, "materials.gltf", None).unwrap();
+    assert_eq!(scene.textures.len(), 2);
+    assert!(scene.textures.iter().any(|t| (t.width, t.height) == (2, 1)));
+}
+
+#[test]
+fn mirrored_transform_reverses_the_winding() {
+    let scene = load_data("mirrored.gltf");
+    let plain = triangles_of(&scene, "Plain")[0];
+    let mirror = triangles_of(&scene, "Mirror")[0];
+    let front = Vec3::ONE.normalize();
+    assert_close(geometric_normal(&scene, plain), front);
+    // the mirror image of the front normal, and the shading normals agree
+    let mirrored_front = Vec3::new(-1.0, 1.0, 1.0).normalize();
+    assert_close(geometric_normal(&scene, mirror), mirrored_front);
+    for v in mirror.vertices {
+        assert_close(scene.normals[v as usize], mirrored_front);
+    }
+}
+
+#[test]
+fn unsupported_required_extension_is_refused() {
+    let error = load_error("unsupported_extension.gltf");
+    assert!(error.contains("KHR_draco_mesh_compression"), "{error}");
+    assert!(
+        error.starts_with(
+            &data_path("unsupported_extension.gltf")
+                .display()
+                .to_string()
+        )
+    );
+}
+
+#[test]
+fn required_texture_transform_is_ignored_with_a_warning() {
+    let scene = load_data("texture_transform.gltf");
+    assert_eq!(scene.triangles.len(), 1);
+    assert!(
+        scene
+            .warnings
+            .iter()
+            .any(|w| w.contains("KHR_texture_transform")),
+        "{:?}",
+        scene.warnings
+    );
+}
+
+#[test]
+fn node_cycle_is_refused() {
+    let error = load_error("node_cycle.gltf");
+    assert!(error.contains("cycle"), "{error}");
+    assert!(
+        error.contains("\"Ping\"") && error.contains("\"Pong\""),
+        "{error}"
+    );
+}
+
+#[test]
+fn index_out_of_range_is_refused() {
+    let error = load_error("index_out_of_range.gltf");
+    assert!(
+        error.ends_with(
+            "index_out_of_range.gltf: mesh \"Box\" primitive 0: index 5 out of range (3 vertices)"
+        ),
+        "{error}"
+    );
+}
+
+#[test]
+fn float_index_accessor_is_refused_without_panic() {
+    let error = load_error("float_indices.gltf");
+    assert!(error.contains("mesh \"Floaty\" primitive 0"), "{error}");
+    assert!(error.contains("FLOAT"), "{error}");
+}
+
+#[test]
+fn singular_world_transform_is_refused_naming_the_node() {
+    let text = read_data("normals.gltf").replace("\"scale\": [2, 1, 1]", "\"scale\": [0, 1, 1]");
+    let error = load_slice(text.as_bytes(), "flattened.gltf", None).unwrap_err();
+    let error = error.to_string();
+    assert!(
+        error.starts_with("flattened.gltf: node \"Smooth\""),
+        "{error}"
+    );
+    assert!(error.contains("singular"), "{error}");
+}
+
+#[test]
+fn external_buffer_needs_a_base_directory() {
+    let text = read_data("hierarchy.gltf");
+    let start = text.find("data:application").unwrap();
+    let end = start + text[start..].find('"').unwrap();
+    let external = format!("{}geometry.bin{}", &text[..start], &text[end..]);
+    let error = load_slice(external.as_bytes(), "external.gltf", None).unwrap_err();
+    assert!(
+        error.to_string().contains("external file \"geometry.bin\""),
+        "{error}"
+    );
+}
+
+/// A GLB container around `json` and an optional BIN chunk (both padded).
+fn glb(json: &str, bin: Option<&[u8]>) -> Vec<u8> {
+    let mut json = json.as_bytes().to_vec();
+    while !json.len().is_multiple_of(4) {
+        json.push(b' ');
+    }
+    let mut chunks = Vec::new();
+    chunks.extend((json.len() as u32).to_le_bytes());
+    chunks.extend(b"JSON");
+    chunks.extend(&json);
+    if let Some(bin) = bin {
+        let mut bin = bin.to_vec();
+        while !bin.len().is_multiple_of(4) {
+            bin.push(0);
+        }
+        chunks.extend((bin.len() as u32).to_le_bytes());
+        chunks.extend(b"BIN\0");
+        chunks.extend(&bin);
+    }
+    let mut file = b"glTF".to_vec();
+    file.extend(2u32.to_le_bytes());
+    file.extend((12 + chunks.len() as u32).to_le_bytes());
+    file.extend(chunks);
+    file
+}
+
+const GLB_JSON: &str = r#"{"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],
+"bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36}]}"#;
+
+fn triangle_bin() -> Vec<u8> {
+    [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect()
+}
+
+#[test]
+fn glb_bytes_load_from_a_slice() {
+    let bytes = glb(GLB_JSON, Some(&triangle_bin()));
+    let scene = load_slice(&bytes, "triangle.glb", None).unwrap();
+    assert_eq!(scene.name, "triangle.glb");
+    assert_eq!(scene.triangles.len(), 1);
+    assert_close(scene.positions[1], Vec3::X);
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+}
+
+#[test]
+fn glb_with_lying_lengths_is_refused() {
+    let good = glb(GLB_JSON, Some(&triangle_bin()));
+
+    let mut too_long = good.clone();
+    too_long[8..12].copy_from_slice(&(good.len() as u32 + 4).to_le_bytes());
+    let error = load_slice(&too_long, "long.glb", None).unwrap_err();
+    assert!(error.to_string().contains("declares"), "{error}");
+
+    let mut big_chunk = good.clone();
+    big_chunk[12..16].copy_from_slice(&u32::MAX.to_le_bytes());
+    assert!(load_slice(&big_chunk, "chunk.glb", None).is_err());
+
+    assert!(load_slice(&good[..16], "cut.glb", None).is_err());
+
+    let short_bin = glb(GLB_JSON, Some(&triangle_bin()[..24]));
+    let error = load_slice(&short_bin, "short.glb", None).unwrap_err();
+    assert!(error.to_string().contains("buffer 0"), "{error}");
+}
+
+// ---------------------------------------------------------------------------
+// The shared corpus
+
+fn corpus_dir() -> PathBuf {
+    let dir = std::env::var_os("LUMIERE_GLTF_CORPUS")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/gltf-corpus"));
+    assert!(
+        dir.is_dir(),
+        "glTF corpus not found at {} (clone `shared/` beside the repository or set LUMIERE_GLTF_CORPUS)",
+        dir.display()
+    );
+    dir
+}
+
+/// The .gltf and .glb files under `dir`, recursively, sorted.
+fn gltf_files(dir: &Path) -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    let mut pending = vec![dir.to_path_buf()];
+    while let Some(dir) = pending.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                pending.push(path);
+            } else if path.extension().is_some_and(|e| e == "gltf" || e == "glb") {
+                files.push(path);
+            }
+        }
+    }
+    files.sort();
+    files
+}
+
+#[test]
+fn every_valid_corpus_file_loads() {
+    let files = gltf_files(&corpus_dir().join("valid"));
+    assert!(files.len() >= 10, "valid corpus has {} files", files.len());
+    for path in &files {
+        let scene = load(path).unwrap_or_else(|e| panic!("{e}"));
+        assert!(
+            !scene.triangles.is_empty(),
+            "{}: no triangles",
+            path.display()
+        );
+        assert_pool_lengths_match(&scene);
+        for t in &scene.triangles {
+            assert!(
+                t.vertices
+                    .iter()
+                    .all(|&v| (v as usize) < scene.positions.len())
+            );
+        }
+    }
+}
+
+#[test]
+fn corpus_specifics_are_read() {
+    let valid = corpus_dir().join("valid");
+    let cameras = load(&valid.join("Cameras.gltf")).unwrap();
+    assert_eq!(cameras.cameras.len(), 2);
+    assert!(
+        matches!(cameras.cameras[0].projection, Projection::Perspective { yfov } if (yfov - 0.7).abs() < 1e-6)
+    );
+    assert!(
+        matches!(cameras.cameras[1].projection, Projection::Orthographic { half_height } if half_height == 1.0)
+    );
+
+    // the sparse values raise three vertices to y = 4
+    let sparse = load(&valid.join("SimpleSparseAccessor.gltf")).unwrap();
+    assert_eq!(sparse.bounds().max.y, 4.0);
+
+    let textured = load(&valid.join("BoxTextured.gltf")).unwrap();
+    assert_eq!(textured.textures.len(), 1);
+    assert!(
+        textured
+            .materials
+            .iter()
+            .any(|m| m.base_color_texture.is_some())
+    );
+}
+
+#[test]
+fn every_invalid_corpus_file_is_refused_or_warned_without_panic() {
+    let root = corpus_dir().join("invalid");
+    let files = gltf_files(&root);
+    assert!(!files.is_empty(), "invalid corpus is empty");
+    let mut failures = Vec::new();
+    for path in &files {
+        let shown = path.strip_prefix(&root).unwrap().display().to_string();
+        match std::panic::catch_unwind(|| load(path)) {
+            Err(_) => failures.push(format!("{shown}: panicked")),
+            Ok(Err(error)) => eprintln!("Err   {shown}: {}", error.problem),
+            Ok(Ok(scene)) if !scene.warnings.is_empty() => {
+                eprintln!("Warn  {shown}: {}", scene.warnings.join(" | "))
+            }
+            Ok(Ok(_)) => failures.push(format!("{shown}: loaded without error or warning")),
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
