@@ -5,6 +5,22 @@
 //! L3+ (three reflections or more). See `docs/light-transport.md` for the
 //! estimators and `docs/architecture.md` for how a sample flows through the
 //! modules below.
+//!
+//! Rendering one term of a scene whose answer is known — the furnace, a
+//! closed sphere emitting L_e = 2 with albedo ½, where L1 = ρ·L_e = 1:
+//!
+//! ```
+//! use lumiere::render::{Budget, render};
+//! use lumiere::{Film, RenderContext, RenderSettings, Term, TermSet, scene::builtin};
+//!
+//! let settings = RenderSettings { width: 8, height: 8, terms: TermSet::only(Term::L1), ..Default::default() };
+//! let context = RenderContext::new(builtin::furnace(0.5, 2.0), settings);
+//! let mut film = Film::new(8, 8);
+//! render(&context, &mut film, Budget::Samples(16), |_| {});
+//! let l1 = film.radiance(TermSet::only(Term::L1));
+//! let mean = l1.iter().map(|p| p.x).sum::<f32>() / l1.len() as f32;
+//! assert!((mean - 1.0).abs() < 0.05, "L1 = {mean}");
+//! ```
 
 pub mod accel;
 pub mod brdf;

@@ -160,3 +160,80 @@ fn mirror_shows_the_light_times_its_reflectance() {
     );
     assert_eq!((l0, l2), (0.0, 0.0));
 }
+
+/// A plane lit by one punctual light and nothing else.
+fn plane_with_light(light: lumiere::scene::PunctualLight) -> Scene {
+    let mut scene = Scene::default();
+    let floor = scene.add_material(Material::lambert("floor", Vec3::splat(ALBEDO)));
+    let s = 20.0;
+    let plane = [
+        Vec3::new(-s, -s, 0.0),
+        Vec3::new(s, -s, 0.0),
+        Vec3::new(s, s, 0.0),
+        Vec3::new(-s, s, 0.0),
+    ];
+    scene.add_mesh("plane", floor, &plane, &[[0, 1, 2], [0, 2, 3]]);
+    scene.lights.push(light);
+    scene
+}
+
+#[test]
+fn spot_light_lights_its_cone_only() {
+    use lumiere::scene::{PunctualKind, PunctualLight};
+    let intensity = 5.0;
+    let scene = plane_with_light(PunctualLight {
+        name: "spot".into(),
+        kind: PunctualKind::Spot {
+            inner_cone_angle: 0.3,
+            outer_cone_angle: 0.5,
+        },
+        position: Vec3::new(0.0, 0.0, 2.0),
+        direction: -Vec3::Z,
+        intensity: Vec3::splat(intensity),
+    });
+    let settings = RenderSettings {
+        terms: TermSet::only(Term::L1),
+        ..RenderSettings::default()
+    };
+    let context = RenderContext::new(scene, settings);
+    let rho_over_pi = ALBEDO as f64 / std::f64::consts::PI;
+    // inside the inner cone (tan 0.3 · 2 ≈ 0.62): the full intensity
+    let x: f64 = 0.4;
+    let d2 = 4.0 + x * x;
+    let cos = 2.0 / d2.sqrt();
+    let expected = rho_over_pi * intensity as f64 * cos / d2;
+    let (inside, _) = estimate(&context, ray_to_floor(x as f32, 0.0), Term::L1, 4);
+    assert!(
+        (inside - expected).abs() < 1e-5 * expected,
+        "inside the cone: {inside}, expected {expected}"
+    );
+    // outside the outer cone (tan 0.5 · 2 ≈ 1.09): nothing
+    let (outside, _) = estimate(&context, ray_to_floor(1.5, 0.0), Term::L1, 4);
+    assert_eq!(outside, 0.0);
+}
+
+#[test]
+fn directional_light_gives_e_cos_theta() {
+    use lumiere::scene::{PunctualKind, PunctualLight};
+    let irradiance = 2.0f32;
+    let direction = Vec3::new(1.0, 0.0, -1.0).normalize(); // 45° incidence
+    let scene = plane_with_light(PunctualLight {
+        name: "sun".into(),
+        kind: PunctualKind::Directional,
+        position: Vec3::ZERO,
+        direction,
+        intensity: Vec3::splat(irradiance),
+    });
+    let settings = RenderSettings {
+        terms: TermSet::only(Term::L1),
+        ..RenderSettings::default()
+    };
+    let context = RenderContext::new(scene, settings);
+    let expected =
+        (ALBEDO / std::f32::consts::PI * irradiance * std::f32::consts::FRAC_1_SQRT_2) as f64;
+    let (measured, _) = estimate(&context, ray_to_floor(0.0, 0.0), Term::L1, 4);
+    assert!(
+        (measured - expected).abs() < 1e-5 * expected,
+        "{measured} vs {expected}"
+    );
+}

@@ -55,3 +55,50 @@ fn point_light_in_a_sphere() {
         );
     }
 }
+
+/// The same with `--lights area`: the point light becomes a sphere of radius
+/// r and radiance I/(π r²), whose irradiance at distance R is π L (r/R)² =
+/// I/R², so L1 keeps its closed form. For L2, the sphere now hides the cone
+/// of half-angle asin(r/R) around each wall point's normal, whose projected
+/// solid angle is π (r/R)²: L2 = ρ L1 (1 − (r/R)²). The sphere itself is seen
+/// in L0 with radiance I/(π r²).
+#[test]
+fn sphere_light_in_a_sphere_keeps_the_point_lights_power() {
+    let (albedo, intensity, radius, light_radius) = (0.5f64, 3.0f64, 2.0f64, 0.3f64);
+    let l1 = albedo * intensity / (std::f64::consts::PI * radius * radius);
+    let hidden = (light_radius / radius).powi(2);
+    for (term, value) in [(Term::L1, l1), (Term::L2, albedo * l1 * (1.0 - hidden))] {
+        let mut settings = small(24, 24, TermSet::only(term));
+        settings.light_mode = lumiere::LightMode::Area;
+        settings.light_radius = Some(light_radius as f32);
+        // the camera must not sit inside the light: beside it, looking away
+        let mut scene = point_in_sphere(albedo as f32, intensity as f32, radius as f32);
+        scene.cameras[0].world_from_camera = glam::Affine3A::from_rotation_translation(
+            glam::Quat::from_rotation_y(std::f32::consts::PI),
+            glam::Vec3::new(0.0, 0.0, 1.0),
+        );
+        let film = render_film(scene, &settings, 64);
+        assert_agrees(
+            &format!("sphere light {term}"),
+            mean_and_error(&film, term),
+            value,
+            4.0,
+            2e-4,
+        );
+    }
+    // seen directly, the sphere has radiance I/(π r²)
+    let mut scene = point_in_sphere(albedo as f32, intensity as f32, radius as f32);
+    scene.cameras[0].world_from_camera =
+        glam::Affine3A::from_translation(glam::Vec3::new(0.0, 0.0, 1.5));
+    scene.cameras[0].projection = lumiere::scene::Projection::Perspective { yfov: 0.02 };
+    let mut settings = small(4, 4, TermSet::only(Term::L0));
+    settings.light_mode = lumiere::LightMode::Area;
+    settings.light_radius = Some(light_radius as f32);
+    let film = render_film(scene, &settings, 4);
+    let expected = intensity / (std::f64::consts::PI * light_radius * light_radius);
+    let (mean, _) = mean_and_error(&film, Term::L0);
+    assert!(
+        (mean - expected).abs() < 1e-4 * expected,
+        "sphere light seen with radiance {mean}, expected {expected}"
+    );
+}

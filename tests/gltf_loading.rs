@@ -2,6 +2,8 @@
 //! buffer is described in that folder's README), hand-built GLB bytes, and the
 //! shared corpus of valid and invalid files (`../shared/gltf-corpus`).
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use glam::{Vec2, Vec3};
@@ -473,39 +475,9 @@ fn glb_with_lying_lengths_is_refused() {
 // ---------------------------------------------------------------------------
 // The shared corpus
 
-fn corpus_dir() -> PathBuf {
-    let dir = std::env::var_os("LUMIERE_GLTF_CORPUS")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/gltf-corpus"));
-    assert!(
-        dir.is_dir(),
-        "glTF corpus not found at {} (clone `shared/` beside the repository or set LUMIERE_GLTF_CORPUS)",
-        dir.display()
-    );
-    dir
-}
-
-/// The .gltf and .glb files under `dir`, recursively, sorted.
-fn gltf_files(dir: &Path) -> Vec<PathBuf> {
-    let mut files = Vec::new();
-    let mut pending = vec![dir.to_path_buf()];
-    while let Some(dir) = pending.pop() {
-        for entry in std::fs::read_dir(&dir).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                pending.push(path);
-            } else if path.extension().is_some_and(|e| e == "gltf" || e == "glb") {
-                files.push(path);
-            }
-        }
-    }
-    files.sort();
-    files
-}
-
 #[test]
 fn every_valid_corpus_file_loads() {
-    let files = gltf_files(&corpus_dir().join("valid"));
+    let files = common::gltf_files(&common::corpus_dir().join("valid"));
     assert!(files.len() >= 10, "valid corpus has {} files", files.len());
     for path in &files {
         let scene = load(path).unwrap_or_else(|e| panic!("{e}"));
@@ -527,7 +499,7 @@ fn every_valid_corpus_file_loads() {
 
 #[test]
 fn corpus_specifics_are_read() {
-    let valid = corpus_dir().join("valid");
+    let valid = common::corpus_dir().join("valid");
     let cameras = load(&valid.join("Cameras.gltf")).unwrap();
     assert_eq!(cameras.cameras.len(), 2);
     assert!(
@@ -553,8 +525,8 @@ fn corpus_specifics_are_read() {
 
 #[test]
 fn every_invalid_corpus_file_is_refused_or_warned_without_panic() {
-    let root = corpus_dir().join("invalid");
-    let files = gltf_files(&root);
+    let root = common::corpus_dir().join("invalid");
+    let files = common::gltf_files(&root);
     assert!(!files.is_empty(), "invalid corpus is empty");
     let mut failures = Vec::new();
     for path in &files {

@@ -176,3 +176,49 @@ fn cli_reports_an_unloadable_scene_with_code_1() {
         assert!(!stderr.contains("panicked"), "{stderr}");
     }
 }
+
+/// Every valid corpus file renders to finite, non-negative radiance; every
+/// invalid one makes the command line exit with 1 and a message naming it.
+#[test]
+fn corpus_files_render_or_fail_cleanly() {
+    let corpus = common::corpus_dir();
+    for path in common::gltf_files(&corpus.join("valid")) {
+        let scene = lumiere::scene::gltf::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        let film = render_film(scene, &small(16, 12, TermSet::ALL), 2);
+        let radiance = film.radiance(TermSet::ALL);
+        assert!(
+            radiance
+                .iter()
+                .all(|p| p.is_finite() && p.min_element() >= 0.0),
+            "{}: non-finite or negative radiance",
+            path.display()
+        );
+    }
+    let out = temp_path("corpus.png");
+    for path in common::gltf_files(&corpus.join("invalid")) {
+        let result = lumiere()
+            .arg("render")
+            .arg(&path)
+            .arg("-o")
+            .arg(&out)
+            .args(["--width", "8", "--height", "8", "--spp", "1"])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(!stderr.contains("panicked"), "{}: {stderr}", path.display());
+        let name = path.file_name().unwrap().to_string_lossy();
+        match result.status.code() {
+            Some(0) => assert!(
+                stderr.contains("warning"),
+                "{}: loaded without a warning",
+                path.display()
+            ),
+            Some(1) => assert!(
+                stderr.contains(&*name),
+                "{}: the error must name the file: {stderr}",
+                path.display()
+            ),
+            code => panic!("{}: exit code {code:?}", path.display()),
+        }
+    }
+}

@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+use std::path::{Path, PathBuf};
+
 use lumiere::render::{Budget, render};
 use lumiere::{Film, RenderContext, RenderSettings, Scene, Term, TermSet};
 
@@ -46,4 +48,34 @@ pub fn assert_agrees(what: &str, measured: (f64, f64), expected: f64, z: f64, sy
         "{what}: measured {mean:.6} ± {error:.2e}, expected {expected:.6} (tolerance {tolerance:.2e}, z = {:.2})",
         (mean - expected) / error.max(1e-30)
     );
+}
+
+pub fn corpus_dir() -> PathBuf {
+    let dir = std::env::var_os("LUMIERE_GLTF_CORPUS")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/gltf-corpus"));
+    assert!(
+        dir.is_dir(),
+        "glTF corpus not found at {} (clone `shared/` beside the repository or set LUMIERE_GLTF_CORPUS)",
+        dir.display()
+    );
+    dir
+}
+
+/// The .gltf and .glb files under `dir`, recursively, sorted.
+pub fn gltf_files(dir: &Path) -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    let mut pending = vec![dir.to_path_buf()];
+    while let Some(dir) = pending.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                pending.push(path);
+            } else if path.extension().is_some_and(|e| e == "gltf" || e == "glb") {
+                files.push(path);
+            }
+        }
+    }
+    files.sort();
+    files
 }
