@@ -21,7 +21,7 @@ use glam::{UVec2, Vec3, Vec3A, Vec4};
 use obvhs::cwbvh::node::{CwBvhNode, extract_byte64};
 use obvhs::{BvhBuildParams, cwbvh::CwBvh, cwbvh::builder::build_cwbvh_from_tris};
 
-use crate::geometry::{Ray, TriangleHit, gamma, intersect_triangle};
+use crate::geometry::{Ray, ShearedRay, TriangleHit, gamma};
 use crate::scene::Scene;
 
 /// An emitting sphere (a sphere light); `light` is its index in the light table.
@@ -131,6 +131,7 @@ impl Accel {
         let mut best: Option<(u32, TriangleHit)> = None;
         if self.triangle_count() > 0 {
             let mut traverse_ray = Self::obvhs_ray(ray);
+            let sheared = ShearedRay::new(traverse_ray.origin, traverse_ray.direction);
             let mut state = self.bvh.new_traversal(traverse_ray.direction);
             let mut node;
             obvhs::traverse!(
@@ -141,8 +142,7 @@ impl Accel {
                 {
                     let id = state.primitive_id as usize;
                     let [p0, p1, p2] = self.vertices[id];
-                    let (o, d) = (traverse_ray.origin, traverse_ray.direction);
-                    if let Some(hit) = intersect_triangle(o, d, traverse_ray.tmax, p0, p1, p2) {
+                    if let Some(hit) = sheared.intersect(traverse_ray.tmax, p0, p1, p2) {
                         best = Some((id as u32, hit));
                         traverse_ray.tmax = hit.t;
                     }
@@ -179,6 +179,7 @@ impl Accel {
             return false;
         }
         let ray = Self::obvhs_ray(ray);
+        let sheared = ShearedRay::new(ray.origin, ray.direction);
         let mut state = self.bvh.new_traversal(ray.direction);
         let mut node;
         let mut blocked = false;
@@ -190,8 +191,7 @@ impl Accel {
                 intersect_node(node, &ray, state.oct_inv4),
                 {
                     let [p0, p1, p2] = self.vertices[state.primitive_id as usize];
-                    if intersect_triangle(ray.origin, ray.direction, ray.tmax, p0, p1, p2).is_some()
-                    {
+                    if sheared.intersect(ray.tmax, p0, p1, p2).is_some() {
                         blocked = true;
                         break 'traversal;
                     }
@@ -203,11 +203,11 @@ impl Accel {
 
     /// Closest hit by testing every triangle and sphere: the reference the BVH is checked against.
     pub fn brute_force_closest_hit(&self, ray: &Ray) -> Option<Hit> {
-        let (o, d) = (Vec3A::from(ray.origin), Vec3A::from(ray.direction));
+        let sheared = ShearedRay::new(ray.origin.into(), ray.direction.into());
         let mut hit = None;
         let mut t_max = ray.t_max;
         for (id, [p0, p1, p2]) in self.vertices.iter().enumerate() {
-            if let Some(h) = intersect_triangle(o, d, t_max, *p0, *p1, *p2) {
+            if let Some(h) = sheared.intersect(t_max, *p0, *p1, *p2) {
                 t_max = h.t;
                 hit = Some(Hit::Triangle {
                     t: h.t,

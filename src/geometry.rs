@@ -11,7 +11,7 @@
 //!   one ulp further (pbrt-v4 `OffsetRayOrigin`). No fixed epsilon: the offset
 //!   scales with the magnitude of the coordinates.
 
-use glam::{Vec3, Vec3A};
+use glam::{Vec3, Vec3A, Vec3Swizzles};
 
 /// γ(n) = nε / (1 − nε), the bound on the relative error of n f32 operations.
 pub const fn gamma(n: i32) -> f32 {
@@ -130,9 +130,101 @@ pub struct TriangleHit {
     pub b2: f32,
 }
 
-/// Watertight ray–triangle intersection (Woop, Benthin, Wald 2013; pbrt-v4).
-/// Returns the hit with `0 < t < t_max`, or `None`.
-#[inline]
+/// A ray prepared for watertight triangle tests: the permutation that makes
+/// its dominant axis z and the shear that maps it onto +z, computed once and
+/// reused for every triangle it meets.
+#[derive(Clone, Copy, Debug)]
+pub struct ShearedRay {
+    origin: Vec3A,
+    /// Index of the dominant axis (it becomes z).
+    kz: u8,
+    shear: Vec3A,
+}
+
+impl ShearedRay {
+    pub fn new(origin: Vec3A, direction: Vec3A) -> Self {
+        let kz = direction.abs().max_position() as u8;
+        let d = Self::permute_axes(kz, direction);
+        Self {
+            origin,
+            kz,
+            shear: Vec3A::new(-d.x / d.z, -d.y / d.z, 1.0 / d.z),
+        }
+    }
+
+    /// (x, y, z) reordered so that axis `kz` comes last, keeping the cyclic order.
+    #[inline(always)]
+    fn permute_axes(kz: u8, v: Vec3A) -> Vec3A {
+        match kz {
+            0 => v.yzx(),
+            1 => v.zxy(),
+            _ => v,
+        }
+    }
+
+    /// Watertight intersection with triangle (p0, p1, p2) (Woop, Benthin,
+    /// Wald 2013; pbrt-v4): the hit with `0 < t < t_max`, or `None`.
+    #[inline]
+    pub fn intersect(&self, t_max: f32, p0: Vec3A, p1: Vec3A, p2: Vec3A) -> Option<TriangleHit> {
+        // translate to the ray origin, permute, shear so the ray runs along +z
+        let sheared = |p: Vec3A| {
+            let q = Self::permute_axes(self.kz, p - self.origin);
+            Vec3A::new(
+                q.x + self.shear.x * q.z,
+                q.y + self.shear.y * q.z,
+                q.z * self.shear.z,
+            )
+        };
+        let (p0t, p1t, p2t) = (sheared(p0), sheared(p1), sheared(p2));
+
+        // edge functions, with exact signs
+        let e0 = difference_of_products(p1t.x, p2t.y, p1t.y, p2t.x);
+        let e1 = difference_of_products(p2t.x, p0t.y, p2t.y, p0t.x);
+        let e2 = difference_of_products(p0t.x, p1t.y, p0t.y, p1t.x);
+        if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0) {
+            return None;
+        }
+        let det = e0 + e1 + e2;
+        if det == 0.0 || !det.is_finite() {
+            return None;
+        }
+
+        // scaled distance, tested against (0, t_max) without dividing
+        let t_scaled = e0 * p0t.z + e1 * p1t.z + e2 * p2t.z;
+        if det < 0.0 && (t_scaled >= 0.0 || t_scaled < t_max * det) {
+            return None;
+        }
+        if det > 0.0 && (t_scaled <= 0.0 || t_scaled > t_max * det) {
+            return None;
+        }
+        let inv_det = 1.0 / det;
+        let t = t_scaled * inv_det;
+
+        // reject hits whose t is not provably positive
+        let max_zt = Vec3A::new(p0t.z, p1t.z, p2t.z).abs().max_element();
+        let max_xt = Vec3A::new(p0t.x, p1t.x, p2t.x).abs().max_element();
+        let max_yt = Vec3A::new(p0t.y, p1t.y, p2t.y).abs().max_element();
+        let delta_z = gamma(3) * max_zt;
+        let delta_x = gamma(5) * (max_xt + max_zt);
+        let delta_y = gamma(5) * (max_yt + max_zt);
+        let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+        let max_e = Vec3A::new(e0, e1, e2).abs().max_element();
+        let delta_t =
+            3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
+        if t <= delta_t {
+            return None;
+        }
+        Some(TriangleHit {
+            t,
+            b0: e0 * inv_det,
+            b1: e1 * inv_det,
+            b2: e2 * inv_det,
+        })
+    }
+}
+
+/// Watertight ray–triangle intersection of one ray with one triangle
+/// (see [`ShearedRay`] to test many triangles against one ray).
 pub fn intersect_triangle(
     origin: Vec3A,
     direction: Vec3A,
@@ -141,73 +233,7 @@ pub fn intersect_triangle(
     p1: Vec3A,
     p2: Vec3A,
 ) -> Option<TriangleHit> {
-    // translate to the ray origin, permute so that z is the dominant axis
-    let kz = direction.abs().max_position();
-    let kx = if kz == 2 { 0 } else { kz + 1 };
-    let ky = if kx == 2 { 0 } else { kx + 1 };
-    let permute = |v: Vec3A| Vec3A::new(v[kx], v[ky], v[kz]);
-    let d = permute(direction);
-    let mut p0t = permute(p0 - origin);
-    let mut p1t = permute(p1 - origin);
-    let mut p2t = permute(p2 - origin);
-
-    // shear so the ray runs along +z
-    let sx = -d.x / d.z;
-    let sy = -d.y / d.z;
-    let sz = 1.0 / d.z;
-    p0t.x += sx * p0t.z;
-    p0t.y += sy * p0t.z;
-    p1t.x += sx * p1t.z;
-    p1t.y += sy * p1t.z;
-    p2t.x += sx * p2t.z;
-    p2t.y += sy * p2t.z;
-
-    // edge functions, with exact signs
-    let e0 = difference_of_products(p1t.x, p2t.y, p1t.y, p2t.x);
-    let e1 = difference_of_products(p2t.x, p0t.y, p2t.y, p0t.x);
-    let e2 = difference_of_products(p0t.x, p1t.y, p0t.y, p1t.x);
-    if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0) {
-        return None;
-    }
-    let det = e0 + e1 + e2;
-    if det == 0.0 || !det.is_finite() {
-        return None;
-    }
-
-    // scaled distance, tested against (0, t_max) without dividing
-    p0t.z *= sz;
-    p1t.z *= sz;
-    p2t.z *= sz;
-    let t_scaled = e0 * p0t.z + e1 * p1t.z + e2 * p2t.z;
-    if det < 0.0 && (t_scaled >= 0.0 || t_scaled < t_max * det) {
-        return None;
-    }
-    if det > 0.0 && (t_scaled <= 0.0 || t_scaled > t_max * det) {
-        return None;
-    }
-    let inv_det = 1.0 / det;
-    let t = t_scaled * inv_det;
-
-    // reject hits whose t is not provably positive
-    let max_zt = Vec3A::new(p0t.z, p1t.z, p2t.z).abs().max_element();
-    let max_xt = Vec3A::new(p0t.x, p1t.x, p2t.x).abs().max_element();
-    let max_yt = Vec3A::new(p0t.y, p1t.y, p2t.y).abs().max_element();
-    let delta_z = gamma(3) * max_zt;
-    let delta_x = gamma(5) * (max_xt + max_zt);
-    let delta_y = gamma(5) * (max_yt + max_zt);
-    let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
-    let max_e = Vec3A::new(e0, e1, e2).abs().max_element();
-    let delta_t =
-        3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
-    if t <= delta_t {
-        return None;
-    }
-    Some(TriangleHit {
-        t,
-        b0: e0 * inv_det,
-        b1: e1 * inv_det,
-        b2: e2 * inv_det,
-    })
+    ShearedRay::new(origin, direction).intersect(t_max, p0, p1, p2)
 }
 
 #[cfg(test)]
