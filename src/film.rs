@@ -13,6 +13,7 @@
 //! zero while the others keep theirs.
 
 use glam::{DVec3, Vec3};
+use rayon::prelude::*;
 
 use crate::color::luminance;
 use crate::settings::{Term, TermSet};
@@ -43,16 +44,21 @@ impl TermBuffer {
         }
     }
 
-    /// Adds one sample per pixel.
-    fn add_pass(&mut self, radiance: impl Iterator<Item = Vec3>) {
+    /// Adds one sample per pixel: term `term` of each pixel's `radiance`.
+    fn add_pass(&mut self, term: usize, radiance: &[[Vec3; Term::COUNT]]) {
         let n = (self.samples + 1) as f64;
-        for ((sum, stats), l) in self.sum.iter_mut().zip(&mut self.luminance).zip(radiance) {
-            *sum += l.as_dvec3();
-            let y = luminance(l) as f64;
-            let delta = y - stats.mean;
-            stats.mean += delta / n;
-            stats.m2 += delta * (y - stats.mean);
-        }
+        self.sum
+            .par_iter_mut()
+            .zip(self.luminance.par_iter_mut())
+            .zip(radiance.par_iter())
+            .for_each(|((sum, stats), sample)| {
+                let l = sample[term];
+                *sum += l.as_dvec3();
+                let y = luminance(l) as f64;
+                let delta = y - stats.mean;
+                stats.mean += delta / n;
+                stats.m2 += delta * (y - stats.mean);
+            });
         self.samples += 1;
     }
 
@@ -113,7 +119,7 @@ impl Film {
         assert_eq!(radiance.len(), pixels, "pass size differs from the film's");
         for term in terms.iter() {
             let buffer = self.terms[term.index()].get_or_insert_with(|| TermBuffer::new(pixels));
-            buffer.add_pass(radiance.iter().map(|r| r[term.index()]));
+            buffer.add_pass(term.index(), radiance);
         }
     }
 
