@@ -1,7 +1,8 @@
 //! Image export: linear EXR (radiance as is) and display-referred PNG.
 //!
-//! Exposure and the sRGB transfer are applied here and at display only,
-//! never inside the estimator: PNG value = sRGB(clamp(L · 2^EV)).
+//! Exposure, tonemap and the sRGB transfer are applied here and at display
+//! only, never inside the estimator: PNG value = sRGB(tonemap(L · 2^EV)). The
+//! viewer's blit shader (`src/app/blit.wgsl`) applies the same formulas.
 
 use std::path::Path;
 
@@ -9,6 +10,7 @@ use glam::Vec3;
 use image::{ImageBuffer, Rgb};
 
 use crate::color::linear_to_srgb;
+use crate::settings::DisplaySettings;
 
 /// Image file formats lumiere writes, chosen by extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -39,24 +41,24 @@ pub struct ExportError {
     pub problem: String,
 }
 
-/// 8-bit sRGB of radiance `pixels` scaled by 2^`exposure`.
-pub fn to_srgb8(pixels: &[Vec3], exposure: f32) -> Vec<u8> {
-    let scale = exposure.exp2();
+/// 8-bit sRGB of radiance `pixels` as displayed with `display`.
+pub fn to_srgb8(pixels: &[Vec3], display: DisplaySettings) -> Vec<u8> {
+    let scale = display.exposure.exp2();
     pixels
         .iter()
         .flat_map(|p| (*p * scale).to_array())
-        .map(|c| (linear_to_srgb(c) * 255.0 + 0.5) as u8)
+        .map(|c| (linear_to_srgb(display.tonemap.apply(c)) * 255.0 + 0.5) as u8)
         .collect()
 }
 
 /// Writes `pixels` (row-major from the top, linear radiance) to `path`,
-/// in the format its extension names.
+/// in the format its extension names (`display` applies to PNG only).
 pub fn save_image(
     path: &Path,
     width: u32,
     height: u32,
     pixels: &[Vec3],
-    exposure: f32,
+    display: DisplaySettings,
 ) -> Result<(), ExportError> {
     let fail = |problem: String| ExportError {
         path: path.to_path_buf(),
@@ -74,7 +76,7 @@ pub fn save_image(
         }
         ImageFormat::Png => {
             let image: ImageBuffer<Rgb<u8>, _> =
-                ImageBuffer::from_raw(width, height, to_srgb8(pixels, exposure))
+                ImageBuffer::from_raw(width, height, to_srgb8(pixels, display))
                     .ok_or_else(|| fail("image size mismatch".into()))?;
             image.save(path)
         }

@@ -23,6 +23,8 @@
 //! surface. Russian roulette starts after the third reflection (it only
 //! touches L3+), and `max_bounces` caps the reflections.
 
+use std::sync::Arc;
+
 use glam::Vec3;
 
 use crate::accel::{Accel, Hit};
@@ -60,7 +62,7 @@ impl RayCounts {
 /// Everything a sample needs: the scene, its acceleration structure, its
 /// lights and the settings they were built for.
 pub struct RenderContext {
-    pub scene: Scene,
+    pub scene: Arc<Scene>,
     pub accel: Accel,
     pub lights: LightTable,
     pub settings: RenderSettings,
@@ -69,7 +71,8 @@ pub struct RenderContext {
 
 impl RenderContext {
     /// Builds the lights and the BVH of `scene` for `settings`, with the scene's default camera.
-    pub fn new(scene: Scene, settings: RenderSettings) -> Self {
+    pub fn new(scene: impl Into<Arc<Scene>>, settings: RenderSettings) -> Self {
+        let scene = scene.into();
         let lights = LightTable::build(&scene, &settings);
         let hidden = &lights.hidden_triangles;
         let accel = Accel::build(&scene, |t| !hidden[t as usize], lights.spheres.clone());

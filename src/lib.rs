@@ -32,6 +32,7 @@ pub mod film;
 pub mod geometry;
 pub mod integrator;
 pub mod lights;
+pub mod progressive;
 pub mod render;
 pub mod sampling;
 pub mod scene;

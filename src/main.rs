@@ -15,6 +15,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use lumiere::export::{ImageFormat, save_image};
 use lumiere::render::{Budget, RenderStats, render};
 use lumiere::scene::builtin;
+use lumiere::settings::{DisplaySettings, Tonemap};
 use lumiere::{BrdfOverride, Film, LightMode, RenderContext, RenderSettings, TermSet};
 
 #[derive(Parser)]
@@ -78,6 +79,9 @@ struct RenderArgs {
     /// Exposure in stops for the PNG (the EXR stays linear).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_exposure)]
     exposure: f32,
+    /// Tonemap for the PNG: none (clamp), reinhard or aces.
+    #[arg(long, default_value = "none")]
+    tonemap: Tonemap,
 }
 
 fn parse_seconds(s: &str) -> Result<f64, String> {
@@ -209,7 +213,10 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
         settings.width,
         settings.height,
         &pixels,
-        args.exposure,
+        DisplaySettings {
+            exposure: args.exposure,
+            tonemap: args.tonemap,
+        },
     )
     .map_err(|e| runtime(e.into()))?;
     println!("{}", summary(&stats));

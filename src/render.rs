@@ -5,6 +5,7 @@
 //! threads or the order in which tiles finish. Tiles are bands of rows,
 //! handed to rayon's work-stealing pool.
 
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use glam::Vec3;
@@ -53,6 +54,19 @@ pub fn render_pass(
     pass: u32,
     buffer: &mut PassBuffer,
 ) -> RayCounts {
+    render_pass_cancellable(context, film, pass, buffer, &AtomicBool::new(false))
+        .expect("a pass that cannot be cancelled completes")
+}
+
+/// [`render_pass`] that gives up, leaving `film` untouched, once `cancel` is
+/// set (checked between tiles): `None` if it was cancelled.
+pub fn render_pass_cancellable(
+    context: &RenderContext,
+    film: &mut Film,
+    pass: u32,
+    buffer: &mut PassBuffer,
+    cancel: &AtomicBool,
+) -> Option<RayCounts> {
     let width = film.width as usize;
     buffer
         .samples
@@ -64,6 +78,9 @@ pub fn render_pass(
         .enumerate()
         .map(|(tile, pixels)| {
             let mut counts = RayCounts::default();
+            if cancel.load(Ordering::Relaxed) {
+                return counts;
+            }
             for (offset, sample) in pixels.iter_mut().enumerate() {
                 let index = tile * width * TILE_ROWS + offset;
                 let (x, y) = ((index % width) as u32, (index / width) as u32);
@@ -76,8 +93,11 @@ pub fn render_pass(
             a.add(&b);
             a
         });
+    if cancel.load(Ordering::Relaxed) {
+        return None;
+    }
     film.add_pass(context.settings.terms, &buffer.samples);
-    counts
+    Some(counts)
 }
 
 /// Renders until `budget` is spent (at least one pass), calling `progress`

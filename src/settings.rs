@@ -67,6 +67,12 @@ pub struct TermSet {
     bits: u8,
 }
 
+impl Default for TermSet {
+    fn default() -> Self {
+        TermSet::COURSE
+    }
+}
+
 impl TermSet {
     pub const NONE: TermSet = TermSet { bits: 0 };
     pub const ALL: TermSet = TermSet { bits: 0b1111 };
@@ -207,6 +213,49 @@ impl BrdfOverride {
     }
 }
 
+/// The curve that maps exposed radiance to display values (display and PNG only).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Tonemap {
+    /// Clamp to [0, 1].
+    #[default]
+    None,
+    /// c / (1 + c) per channel.
+    Reinhard,
+    /// Narkowicz's fit of the ACES filmic curve.
+    Aces,
+}
+
+impl Tonemap {
+    pub const ALL: [Tonemap; 3] = [Tonemap::None, Tonemap::Reinhard, Tonemap::Aces];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Tonemap::None => "none",
+            Tonemap::Reinhard => "reinhard",
+            Tonemap::Aces => "aces",
+        }
+    }
+
+    /// The curve applied to one exposed linear value; the result is in [0, 1].
+    pub fn apply(self, c: f32) -> f32 {
+        let c = c.max(0.0);
+        let mapped = match self {
+            Tonemap::None => c,
+            Tonemap::Reinhard => c / (1.0 + c),
+            Tonemap::Aces => (c * (2.51 * c + 0.03)) / (c * (2.43 * c + 0.59) + 0.14),
+        };
+        mapped.clamp(0.0, 1.0)
+    }
+}
+
+/// How radiance becomes a picture: exposure (stops), then the tonemap, then sRGB.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct DisplaySettings {
+    pub exposure: f32,
+    pub tonemap: Tonemap,
+}
+
 macro_rules! label_from_str {
     ($t:ty) => {
         impl FromStr for $t {
@@ -235,6 +284,7 @@ macro_rules! label_from_str {
 
 label_from_str!(LightMode);
 label_from_str!(BrdfOverride);
+label_from_str!(Tonemap);
 
 /// Everything that decides the radiance a render estimates (not how long it runs).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -1,0 +1,118 @@
+//! The viewer's render worker: restarts only when radiance changes, term
+//! toggles keep the film, pause and "stop at N spp" stop the passes.
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use lumiere::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
+use lumiere::scene::builtin;
+use lumiere::{BrdfOverride, RenderSettings, Term, TermSet};
+
+fn request() -> ViewRequest {
+    let scene = Arc::new(builtin::cornell());
+    ViewRequest {
+        camera: scene.default_camera(),
+        scene,
+        settings: RenderSettings {
+            width: 48,
+            height: 36,
+            ..RenderSettings::default()
+        },
+        paused: false,
+        stop_at_spp: None,
+    }
+}
+
+/// Polls the worker until `done` holds (fails after 60 s rather than hang).
+fn wait_for(
+    renderer: &ProgressiveRenderer,
+    what: &str,
+    done: impl Fn(&Snapshot) -> bool,
+) -> Arc<Snapshot> {
+    let deadline = Instant::now() + Duration::from_secs(60);
+    loop {
+        let snapshot = renderer.snapshot();
+        if done(&snapshot) {
+            return snapshot;
+        }
+        assert!(
+            Instant::now() < deadline,
+            "timed out waiting for {what}; last snapshot {snapshot:?}"
+        );
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}
+
+#[test]
+fn term_toggles_keep_the_film_and_radiance_changes_restart_it() {
+    let mut request = request();
+    let renderer = ProgressiveRenderer::spawn(request.clone(), || {});
+    let first = wait_for(&renderer, "4 spp", |s| s.samples_per_pixel() >= 4);
+    assert_eq!(first.restarts, 1);
+    assert_eq!((first.width, first.height), (48, 36));
+
+    // switching L2 off: no restart, L2 stops accumulating, the others go on
+    request.settings.terms = TermSet::COURSE.with(Term::L2, false);
+    renderer.request(request.clone());
+    let hidden = wait_for(&renderer, "L2 hidden", |s| {
+        s.terms == request.settings.terms
+    });
+    let l2_samples = hidden.term_samples[Term::L2.index()];
+    let later = wait_for(&renderer, "more L1 samples", |s| {
+        s.term_samples[Term::L1.index()] >= hidden.term_samples[Term::L1.index()] + 3
+    });
+    assert_eq!(later.restarts, 1, "hiding a term must not restart the film");
+    assert_eq!(
+        later.term_samples[Term::L2.index()],
+        l2_samples,
+        "a hidden term is not computed"
+    );
+
+    // switching it back on: still no restart, L2 resumes from its own count
+    request.settings.terms = TermSet::COURSE;
+    renderer.request(request.clone());
+    let shown = wait_for(&renderer, "L2 resumed", |s| {
+        s.term_samples[Term::L2.index()] > l2_samples
+    });
+    assert_eq!(shown.restarts, 1);
+
+    // a BRDF override changes radiance: restart from zero
+    request.settings.brdf = BrdfOverride::Mirror;
+    renderer.request(request.clone());
+    let restarted = wait_for(&renderer, "the restart", |s| s.restarts == 2);
+    assert!(restarted.samples_per_pixel() < shown.samples_per_pixel() || restarted.preview);
+}
+
+#[test]
+fn a_restart_publishes_a_quarter_resolution_preview_first() {
+    let mut request = request();
+    request.paused = true; // after the preview, nothing more
+    let renderer = ProgressiveRenderer::spawn(request, || {});
+    let preview = wait_for(&renderer, "the preview", |s| s.generation >= 1);
+    assert!(preview.preview);
+    assert_eq!((preview.width, preview.height), (12, 9));
+    assert!(preview.radiance.iter().any(|p| p[0] > 0.0));
+    std::thread::sleep(Duration::from_millis(200));
+    assert_eq!(
+        renderer.snapshot().generation,
+        1,
+        "paused: no pass after the preview"
+    );
+}
+
+#[test]
+fn stop_at_spp_stops_exactly_and_pause_holds() {
+    let mut request = request();
+    request.stop_at_spp = Some(5);
+    let renderer = ProgressiveRenderer::spawn(request.clone(), || {});
+    let done = wait_for(&renderer, "the stop", |s| s.idle && !s.preview);
+    assert_eq!(done.samples_per_pixel(), 5);
+    std::thread::sleep(Duration::from_millis(100));
+    assert_eq!(renderer.snapshot().samples_per_pixel(), 5);
+
+    // raising the stop resumes without a restart
+    request.stop_at_spp = Some(8);
+    renderer.request(request);
+    let resumed = wait_for(&renderer, "8 spp", |s| s.samples_per_pixel() == 8 && s.idle);
+    assert_eq!(resumed.restarts, 1);
+}
