@@ -23,6 +23,8 @@
 //! ```
 
 pub mod accel;
+#[cfg(feature = "gui")]
+pub mod app;
 pub mod brdf;
 pub mod camera;
 pub mod color;
@@ -38,6 +40,7 @@ pub mod sampling;
 pub mod scene;
 pub mod settings;
 pub mod shading;
+pub mod sidecar;
 
 pub use error::SceneError;
 pub use film::Film;

@@ -12,47 +12,42 @@ use anyhow::Context;
 use clap::{Args, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
+use lumiere::camera::CameraRays;
 use lumiere::export::{ImageFormat, save_image};
 use lumiere::render::{Budget, RenderStats, render};
+use lumiere::scene::Camera;
 use lumiere::scene::builtin;
 use lumiere::settings::{DisplaySettings, Tonemap};
+use lumiere::sidecar::Sidecar;
 use lumiere::{BrdfOverride, Film, LightMode, RenderContext, RenderSettings, TermSet};
 
 #[derive(Parser)]
 #[command(
     name = "lumiere",
     version,
-    about = "A path tracer that teaches light transport, term by term"
+    about = "A path tracer that teaches light transport, term by term",
+    long_about = "A path tracer that teaches light transport, term by term.\nWithout a command, opens the viewer on the built-in Cornell box."
 )]
 struct Cli {
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
 }
 
 #[derive(Subcommand)]
 enum Command {
-    /// Render a scene to an image (EXR: linear radiance; PNG: exposure, then sRGB).
+    /// Render a scene to an image (EXR: linear radiance; PNG: exposure, tonemap, then sRGB).
     Render(RenderArgs),
+    /// Open the interactive viewer.
+    View(ViewArgs),
 }
 
-#[derive(Args)]
-struct RenderArgs {
-    /// A .gltf/.glb file, or `cornell` (the built-in Cornell box).
-    #[arg(default_value = "cornell")]
-    scene: String,
-    /// Output image; its extension picks the format (.exr or .png).
-    #[arg(short, long)]
-    output: PathBuf,
+/// What decides the radiance and its display: shared by `render` and `view`.
+#[derive(Args, Clone)]
+struct SceneOptions {
     #[arg(long, default_value_t = 640, value_parser = clap::value_parser!(u32).range(1..=16384))]
     width: u32,
     #[arg(long, default_value_t = 480, value_parser = clap::value_parser!(u32).range(1..=16384))]
     height: u32,
-    /// Samples per pixel.
-    #[arg(long, default_value_t = 64, conflicts_with = "time", value_parser = clap::value_parser!(u32).range(1..=100_000_000))]
-    spp: u32,
-    /// Render for this many seconds instead of a fixed sample count.
-    #[arg(long, value_parser = parse_seconds)]
-    time: Option<f64>,
     /// Lighting terms: L0 (emission), L1 (direct), L2 (one indirect bounce), L3+ (the rest); `all` = all four.
     #[arg(long, default_value = "L0,L1,L2")]
     terms: TermSet,
@@ -73,15 +68,50 @@ struct RenderArgs {
     max_bounces: u32,
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// Exposure in stops (PNG and display; the EXR stays linear).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_exposure)]
+    exposure: f32,
+    /// Tonemap (PNG and display): none (clamp), reinhard or aces.
+    #[arg(long, default_value = "none")]
+    tonemap: Tonemap,
+}
+
+#[derive(Args)]
+struct RenderArgs {
+    /// A .gltf/.glb file, or `cornell` (the built-in Cornell box, the default).
+    scene: Option<String>,
+    /// Output image; its extension picks the format (.exr or .png).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Samples per pixel (default 64, or the sidecar's).
+    #[arg(long, conflicts_with = "time", value_parser = clap::value_parser!(u32).range(1..=100_000_000))]
+    spp: Option<u32>,
+    /// Render for this many seconds instead of a fixed sample count.
+    #[arg(long, value_parser = parse_seconds)]
+    time: Option<f64>,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
     threads: Option<u32>,
-    /// Exposure in stops for the PNG (the EXR stays linear).
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_exposure)]
-    exposure: f32,
-    /// Tonemap for the PNG: none (clamp), reinhard or aces.
-    #[arg(long, default_value = "none")]
-    tonemap: Tonemap,
+    /// A screenshot's JSON sidecar: its scene, camera, settings and spp replace the options above.
+    #[arg(long)]
+    settings: Option<PathBuf>,
+    #[command(flatten)]
+    options: SceneOptions,
+}
+
+#[derive(Parser)]
+struct ViewArgs {
+    /// A .gltf/.glb file, or `cornell` (the built-in Cornell box, the default).
+    #[arg(default_value = "cornell")]
+    scene: String,
+    /// Render to this many samples per pixel, then exit (saving --screenshot first).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000_000))]
+    exit_after_spp: Option<u32>,
+    /// With --exit-after-spp: a PNG of the whole window, taken by the viewer.
+    #[arg(long, requires = "exit_after_spp")]
+    screenshot: Option<PathBuf>,
+    #[command(flatten)]
+    options: SceneOptions,
 }
 
 fn parse_seconds(s: &str) -> Result<f64, String> {
@@ -126,7 +156,7 @@ fn parse_exposure(s: &str) -> Result<f32, String> {
     }
 }
 
-impl RenderArgs {
+impl SceneOptions {
     fn settings(&self) -> RenderSettings {
         RenderSettings {
             width: self.width,
@@ -142,10 +172,10 @@ impl RenderArgs {
         }
     }
 
-    fn budget(&self) -> Budget {
-        match self.time {
-            Some(seconds) => Budget::Time(Duration::from_secs_f64(seconds)),
-            None => Budget::Samples(self.spp),
+    fn display(&self) -> DisplaySettings {
+        DisplaySettings {
+            exposure: self.exposure,
+            tonemap: self.tonemap,
         }
     }
 }
@@ -167,7 +197,9 @@ fn runtime(error: anyhow::Error) -> Failure {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Render(args) => run_render(&args),
+        Some(Command::Render(args)) => run_render(&args),
+        Some(Command::View(args)) => run_view(args, false),
+        None => run_view(ViewArgs::parse_from(["view"]), true),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -178,6 +210,39 @@ fn main() -> ExitCode {
     }
 }
 
+/// What a render does, from the options or from a sidecar.
+struct RenderJob {
+    scene: String,
+    camera: Option<Camera>,
+    settings: RenderSettings,
+    display: DisplaySettings,
+    budget: Budget,
+}
+
+impl RenderJob {
+    fn from_args(args: &RenderArgs) -> Result<Self, Failure> {
+        let time_budget = args.time.map(|s| Budget::Time(Duration::from_secs_f64(s)));
+        let Some(path) = &args.settings else {
+            return Ok(Self {
+                scene: args.scene.clone().unwrap_or_else(|| "cornell".into()),
+                camera: None,
+                settings: args.options.settings(),
+                display: args.options.display(),
+                budget: time_budget.unwrap_or(Budget::Samples(args.spp.unwrap_or(64))),
+            });
+        };
+        let sidecar = Sidecar::load(path).map_err(|e| runtime(e.into()))?;
+        let spp = args.spp.unwrap_or(sidecar.samples_per_pixel.max(1));
+        Ok(Self {
+            scene: args.scene.clone().unwrap_or(sidecar.scene),
+            camera: Some(sidecar.camera),
+            settings: sidecar.settings,
+            display: sidecar.display,
+            budget: time_budget.unwrap_or(Budget::Samples(spp)),
+        })
+    }
+}
+
 fn run_render(args: &RenderArgs) -> Result<(), Failure> {
     if ImageFormat::from_path(&args.output).is_none() {
         return Err(usage(anyhow::anyhow!(
@@ -185,12 +250,13 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
             args.output.display()
         )));
     }
-    let settings = args.settings();
+    let job = RenderJob::from_args(args)?;
+    let settings = job.settings.clone();
     settings.validate().map_err(|e| usage(anyhow::anyhow!(e)))?;
     check_memory(settings.width, settings.height).map_err(usage)?;
-    let scene = builtin::load(&args.scene).map_err(|e| runtime(e.into()))?;
+    let scene = builtin::load(&job.scene).map_err(|e| runtime(e.into()))?;
     for warning in &scene.warnings {
-        eprintln!("warning: {}: {warning}", args.scene);
+        eprintln!("warning: {}: {warning}", job.scene);
     }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0) as usize)
@@ -198,11 +264,14 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
         .context("cannot start the worker threads")
         .map_err(runtime)?;
     let (film, stats) = pool.install(|| {
-        let context = RenderContext::new(scene, settings.clone());
+        let mut context = RenderContext::new(scene, settings.clone());
+        if let Some(camera) = &job.camera {
+            context.camera = CameraRays::new(camera, settings.width, settings.height);
+        }
         let mut film = Film::new(settings.width, settings.height);
-        let bar = progress_bar(args.budget());
-        let stats = render(&context, &mut film, args.budget(), |s| {
-            update_bar(&bar, s, args.budget())
+        let bar = progress_bar(job.budget);
+        let stats = render(&context, &mut film, job.budget, |s| {
+            update_bar(&bar, s, job.budget)
         });
         bar.finish_and_clear();
         (film, stats)
@@ -213,14 +282,34 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
         settings.width,
         settings.height,
         &pixels,
-        DisplaySettings {
-            exposure: args.exposure,
-            tonemap: args.tonemap,
-        },
+        job.display,
     )
     .map_err(|e| runtime(e.into()))?;
     println!("{}", summary(&stats));
     Ok(())
+}
+
+#[cfg(feature = "gui")]
+fn run_view(args: ViewArgs, restore: bool) -> Result<(), Failure> {
+    let settings = args.options.settings();
+    settings.validate().map_err(|e| usage(anyhow::anyhow!(e)))?;
+    check_memory(settings.width, settings.height).map_err(usage)?;
+    let options = lumiere::app::ViewOptions {
+        scene: args.scene,
+        settings,
+        display: args.options.display(),
+        exit_after_spp: args.exit_after_spp,
+        screenshot: args.screenshot,
+        restore,
+    };
+    lumiere::app::run(options).map_err(|e| runtime(anyhow::anyhow!(e)))
+}
+
+#[cfg(not(feature = "gui"))]
+fn run_view(_args: ViewArgs, _restore: bool) -> Result<(), Failure> {
+    Err(usage(anyhow::anyhow!(
+        "this lumiere was built without the viewer (the `gui` feature); use `lumiere render`"
+    )))
 }
 
 /// Refuses images whose film would not fit comfortably in memory.

@@ -1,0 +1,84 @@
+//! Screenshots: the image as displayed (PNG), its radiance (EXR), one EXR
+//! per term on request, and the JSON sidecar that reproduces it.
+
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+use eframe::egui;
+use glam::Vec3;
+
+use crate::export::save_image;
+use crate::film::Film;
+use crate::progressive::Snapshot;
+use crate::settings::{Term, TermSet};
+use crate::sidecar::Sidecar;
+
+/// One screenshot to write, off the UI thread.
+pub struct ScreenshotJob {
+    pub folder: PathBuf,
+    pub snapshot: Arc<Snapshot>,
+    pub film: Option<Arc<Mutex<Film>>>,
+    pub per_term_exr: bool,
+    pub sidecar: Sidecar,
+}
+
+impl ScreenshotJob {
+    /// Writes the files; returns a line saying where.
+    pub fn run(mut self) -> Result<String, String> {
+        std::fs::create_dir_all(&self.folder)
+            .map_err(|e| format!("{}: {e}", self.folder.display()))?;
+        let stem = self.free_stem();
+        let snapshot = &self.snapshot;
+        let (width, height) = (snapshot.width, snapshot.height);
+        let radiance: Vec<Vec3> = snapshot
+            .radiance
+            .iter()
+            .map(|p| Vec3::new(p[0], p[1], p[2]))
+            .collect();
+        let display = self.sidecar.display;
+        let path = |suffix: &str| self.folder.join(format!("{stem}{suffix}"));
+        save_image(&path(".png"), width, height, &radiance, display).map_err(|e| e.to_string())?;
+        save_image(&path(".exr"), width, height, &radiance, display).map_err(|e| e.to_string())?;
+        if self.per_term_exr
+            && let Some(film) = &self.film
+        {
+            let film = film.lock().unwrap_or_else(|p| p.into_inner());
+            for term in Term::ALL.into_iter().filter(|&t| film.samples(t) > 0) {
+                let label = term.label().replace('+', "plus");
+                let pixels = film.radiance(TermSet::only(term));
+                save_image(
+                    &path(&format!("-{label}.exr")),
+                    film.width,
+                    film.height,
+                    &pixels,
+                    display,
+                )
+                .map_err(|e| e.to_string())?;
+            }
+        }
+        self.sidecar.samples_per_pixel = snapshot.samples_per_pixel();
+        self.sidecar
+            .save(&path(".json"))
+            .map_err(|e| e.to_string())?;
+        Ok(format!("saved {}", path(".png").display()))
+    }
+
+    /// `lumiere-N` with the first N not used in the folder.
+    fn free_stem(&self) -> String {
+        (1..)
+            .map(|n| format!("lumiere-{n:03}"))
+            .find(|stem| !self.folder.join(format!("{stem}.png")).exists())
+            .expect("some number is free")
+    }
+}
+
+/// Saves egui's screenshot of the whole window as a PNG.
+pub fn save_window(path: &Path, image: &egui::ColorImage) -> Result<(), String> {
+    let [width, height] = image.size;
+    let bytes: Vec<u8> = image.pixels.iter().flat_map(|c| c.to_array()).collect();
+    let buffer = image::RgbaImage::from_raw(width as u32, height as u32, bytes)
+        .ok_or("screenshot size mismatch")?;
+    buffer
+        .save(path)
+        .map_err(|e| format!("{}: {e}", path.display()))
+}

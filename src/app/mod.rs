@@ -1,0 +1,332 @@
+//! The viewer: an eframe window around the progressive renderer.
+//!
+//! The UI thread only draws: it posts a [`ViewRequest`] to the render worker
+//! whenever a control changes something, and shows the latest snapshot
+//! through the wgpu blit of [`display`]. Settings persist between runs
+//! (eframe storage); runtime handles (worker, scene) do not.
+
+pub mod display;
+mod export;
+mod panels;
+
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
+
+use eframe::egui;
+use serde::{Deserialize, Serialize};
+
+use crate::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
+use crate::scene::{Camera, Scene, builtin};
+use crate::settings::{DisplaySettings, RenderSettings};
+
+/// How the viewer starts (from the command line).
+#[derive(Clone, Debug)]
+pub struct ViewOptions {
+    /// `cornell` or a glTF path.
+    pub scene: String,
+    pub settings: RenderSettings,
+    pub display: DisplaySettings,
+    /// Render to this many samples per pixel, save `screenshot` (if any) and exit.
+    pub exit_after_spp: Option<u32>,
+    pub screenshot: Option<PathBuf>,
+    /// Restore the settings of the previous run (not for scripted runs).
+    pub restore: bool,
+}
+
+impl Default for ViewOptions {
+    fn default() -> Self {
+        Self {
+            scene: "cornell".into(),
+            settings: RenderSettings::default(),
+            display: DisplaySettings::default(),
+            exit_after_spp: None,
+            screenshot: None,
+            restore: false,
+        }
+    }
+}
+
+/// What persists between runs.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct Persisted {
+    pub settings: RenderSettings,
+    pub display: DisplaySettings,
+    pub stop_at_spp: Option<u32>,
+    /// Also write one EXR per term with each screenshot.
+    pub per_term_exr: bool,
+    /// Folder where screenshots go.
+    pub export_dir: String,
+}
+
+impl Default for Persisted {
+    fn default() -> Self {
+        Self {
+            settings: RenderSettings::default(),
+            display: DisplaySettings::default(),
+            stop_at_spp: None,
+            per_term_exr: false,
+            export_dir: ".".into(),
+        }
+    }
+}
+
+const STORAGE_KEY: &str = "lumiere";
+
+/// The viewer application.
+pub struct LumiereApp {
+    pub state: Persisted,
+    pub scene_spec: String,
+    pub scene: Arc<Scene>,
+    pub camera: Camera,
+    pub paused: bool,
+    renderer: ProgressiveRenderer,
+    /// The request last sent to the worker.
+    sent: ViewRequest,
+    /// Text of the scene path field.
+    scene_field: String,
+    /// The last problem or event to show in the status bar.
+    pub message: Option<String>,
+    exit_after_spp: Option<u32>,
+    screenshot: Option<PathBuf>,
+    /// Set by the screenshot callback: the outcome of saving the window.
+    window_shot: Arc<Mutex<Option<Result<PathBuf, String>>>>,
+    window_shot_requested: bool,
+    exports: Vec<std::thread::JoinHandle<Result<String, String>>>,
+}
+
+impl LumiereApp {
+    /// Creates the app: loads the scene, installs the GPU blit, starts the worker.
+    pub fn new(cc: &eframe::CreationContext<'_>, options: ViewOptions) -> Result<Self, String> {
+        let mut state = Persisted {
+            settings: options.settings.clone(),
+            display: options.display,
+            ..Persisted::default()
+        };
+        if options.restore
+            && let Some(saved) = cc
+                .storage
+                .and_then(|s| eframe::get_value::<Persisted>(s, STORAGE_KEY))
+            && saved.settings.validate().is_ok()
+        {
+            state = saved;
+        }
+        if let Some(render_state) = &cc.wgpu_render_state {
+            display::BlitResources::install(render_state);
+        }
+        let scene = Arc::new(builtin::load(&options.scene).map_err(|e| e.to_string())?);
+        let camera = scene.default_camera();
+        let ctx = cc.egui_ctx.clone();
+        let request = ViewRequest {
+            scene: Arc::clone(&scene),
+            settings: state.settings.clone(),
+            camera: camera.clone(),
+            paused: false,
+            stop_at_spp: options.exit_after_spp.or(state.stop_at_spp),
+        };
+        let renderer = ProgressiveRenderer::spawn(request.clone(), move || ctx.request_repaint());
+        Ok(Self {
+            message: scene.warnings.first().map(|w| format!("warning: {w}")),
+            state,
+            scene_field: options.scene.clone(),
+            scene_spec: options.scene,
+            scene,
+            camera,
+            paused: false,
+            renderer,
+            sent: request,
+            exit_after_spp: options.exit_after_spp,
+            screenshot: options.screenshot,
+            window_shot: Arc::default(),
+            window_shot_requested: false,
+            exports: Vec::new(),
+        })
+    }
+
+    /// What the worker should render, from the current controls.
+    pub fn view_request(&self) -> ViewRequest {
+        ViewRequest {
+            scene: Arc::clone(&self.scene),
+            settings: self.state.settings.clone(),
+            camera: self.camera.clone(),
+            paused: self.paused,
+            stop_at_spp: self.exit_after_spp.or(self.state.stop_at_spp),
+        }
+    }
+
+    /// Sends the current request if a control changed it.
+    fn sync_renderer(&mut self) {
+        let request = self.view_request();
+        let same = Arc::ptr_eq(&request.scene, &self.sent.scene)
+            && request.settings == self.sent.settings
+            && request.camera == self.sent.camera
+            && request.paused == self.sent.paused
+            && request.stop_at_spp == self.sent.stop_at_spp;
+        if !same {
+            self.renderer.request(request.clone());
+            self.sent = request;
+        }
+    }
+
+    /// The latest image the worker published.
+    pub fn snapshot(&self) -> Arc<Snapshot> {
+        self.renderer.snapshot()
+    }
+
+    /// Replaces the scene by the one at `spec`; on failure keeps the current one.
+    pub fn load_scene(&mut self, spec: &str) {
+        match builtin::load(spec) {
+            Ok(scene) => {
+                self.message = Some(match scene.warnings.first() {
+                    Some(w) => format!("loaded {spec} (warning: {w})"),
+                    None => format!("loaded {spec}"),
+                });
+                self.camera = scene.default_camera();
+                self.scene = Arc::new(scene);
+                self.scene_spec = spec.to_string();
+                self.scene_field = spec.to_string();
+            }
+            Err(e) => self.message = Some(format!("error: {e}")),
+        }
+    }
+
+    /// Scripted runs: once the image has enough samples, save the window and quit.
+    fn script_exit(&mut self, ctx: &egui::Context, snapshot: &Snapshot) {
+        let Some(target) = self.exit_after_spp else {
+            return;
+        };
+        if snapshot.preview || snapshot.samples_per_pixel() < target {
+            return;
+        }
+        let Some(path) = self.screenshot.clone() else {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            return;
+        };
+        if !self.window_shot_requested {
+            self.window_shot_requested = true;
+            let outcome = Arc::clone(&self.window_shot);
+            let repaint = ctx.clone();
+            ctx.request_screenshot(move |image| {
+                *outcome.lock().unwrap_or_else(|p| p.into_inner()) =
+                    Some(export::save_window(&path, &image).map(|()| path.clone()));
+                repaint.request_repaint();
+            });
+            return;
+        }
+        let done = self
+            .window_shot
+            .lock()
+            .unwrap_or_else(|p| p.into_inner())
+            .take();
+        if let Some(outcome) = done {
+            match outcome {
+                Ok(path) => eprintln!("saved {}", path.display()),
+                Err(e) => eprintln!("error: {e}"),
+            }
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+        } else {
+            ctx.request_repaint();
+        }
+    }
+
+    /// Saves the image as displayed (PNG), its radiance (EXR), optionally one
+    /// EXR per term, and the JSON sidecar, on a background thread.
+    pub fn save_screenshot(&mut self) {
+        let snapshot = self.snapshot();
+        if snapshot.radiance.is_empty() {
+            self.message = Some("nothing to save yet".into());
+            return;
+        }
+        let job = export::ScreenshotJob {
+            folder: PathBuf::from(&self.state.export_dir),
+            snapshot,
+            film: self.renderer.film(),
+            per_term_exr: self.state.per_term_exr,
+            sidecar: crate::sidecar::Sidecar {
+                scene: self.scene_spec.clone(),
+                camera: self.camera.clone(),
+                settings: self.state.settings.clone(),
+                display: self.state.display,
+                samples_per_pixel: 0,
+            },
+        };
+        self.exports.push(std::thread::spawn(move || job.run()));
+        self.message = Some("saving…".into());
+    }
+
+    fn collect_exports(&mut self) {
+        let (finished, running): (Vec<_>, Vec<_>) =
+            self.exports.drain(..).partition(|h| h.is_finished());
+        self.exports = running;
+        for handle in finished {
+            self.message = Some(match handle.join() {
+                Ok(Ok(done)) => done,
+                Ok(Err(e)) => format!("error: {e}"),
+                Err(_) => "error: the export failed".into(),
+            });
+        }
+    }
+
+    fn dropped_files(&mut self, ctx: &egui::Context) {
+        let dropped: Vec<PathBuf> = ctx.input(|i| {
+            i.raw
+                .dropped_files
+                .iter()
+                .map(|f| f.path().to_path_buf())
+                .filter(|p| !p.as_os_str().is_empty())
+                .collect()
+        });
+        if let Some(path) = dropped.first() {
+            self.load_scene(&path.to_string_lossy());
+        }
+    }
+}
+
+impl eframe::App for LumiereApp {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        let ctx = ui.ctx().clone();
+        self.dropped_files(&ctx);
+        self.collect_exports();
+        panels::shortcuts(self, &ctx);
+        let snapshot = self.snapshot();
+        panels::status_bar(self, ui, &snapshot);
+        panels::side_panel(self, ui);
+        panels::viewport(self, ui, &snapshot);
+        self.sync_renderer();
+        self.script_exit(&ctx, &snapshot);
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        eframe::set_value(storage, STORAGE_KEY, &self.state);
+    }
+}
+
+/// Opens the viewer window and runs until it is closed.
+pub fn run(options: ViewOptions) -> Result<(), String> {
+    let native_options = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_title("lumiere")
+            .with_inner_size([1280.0, 800.0])
+            .with_drag_and_drop(true),
+        renderer: eframe::Renderer::Wgpu,
+        persist_window: options.restore,
+        ..Default::default()
+    };
+    let failure: Arc<Mutex<Option<String>>> = Arc::default();
+    let failure_in_app = Arc::clone(&failure);
+    let result = eframe::run_native(
+        "lumiere",
+        native_options,
+        Box::new(move |cc| match LumiereApp::new(cc, options) {
+            Ok(app) => Ok(Box::new(app)),
+            Err(e) => {
+                *failure_in_app.lock().unwrap_or_else(|p| p.into_inner()) = Some(e.clone());
+                Err(e.into())
+            }
+        }),
+    );
+    if let Some(problem) = failure.lock().unwrap_or_else(|p| p.into_inner()).take() {
+        return Err(problem);
+    }
+    result.map_err(|e| format!("cannot open the window: {e} (is there a display? DISPLAY or WAYLAND_DISPLAY must be set)"))
+}

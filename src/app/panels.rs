@@ -1,0 +1,344 @@
+//! The viewer's widgets: side panel groups, status bar, viewport, shortcuts.
+//! Each function edits the app's plain state; `LumiereApp::sync_renderer`
+//! then tells the worker what changed.
+
+use eframe::egui;
+
+use super::{LumiereApp, display};
+use crate::progressive::Snapshot;
+use crate::settings::{BrdfOverride, LightMode, Term, Tonemap};
+
+/// French name and formula of each term, shown on hover (from the course).
+fn term_tooltip(term: Term) -> &'static str {
+    match term {
+        Term::L0 => {
+            "Emission (fr: émission)\nL0(p, ωo) = Le(p, ωo)\nThe light emitted by the surface the camera sees."
+        }
+        Term::L1 => {
+            "Direct lighting (fr: éclairage direct)\nL1 = Σ_s ∫_Ωs Le(q, −ω) fr(p, ω→ωo) |cos θ| dω\nLight from the sources, reflected once."
+        }
+        Term::L2 => {
+            "Indirect lighting (fr: éclairage indirect)\nL2 = ∫_(Ω+ − ΩS) L_direct(q, −ω) fr(p, ω→ωo) |cos θ| dω\nLight reflected twice: q's direct lighting, reflected at p."
+        }
+        Term::L3Plus => {
+            "Three reflections or more (fr: trois réflexions et plus)\nL3+ = L − L0 − L1 − L2\nThe rest of the full solution."
+        }
+    }
+}
+
+/// Keyboard: 0–3 toggle L0–L3+, L cycles the light mode, B the BRDF,
+/// Space pauses, Ctrl+S saves a screenshot.
+pub fn shortcuts(app: &mut LumiereApp, ctx: &egui::Context) {
+    if ctx.egui_wants_keyboard_input() {
+        return;
+    }
+    let pressed = |key| ctx.input(|i| i.key_pressed(key) && !i.modifiers.command);
+    for (key, term) in [
+        (egui::Key::Num0, Term::L0),
+        (egui::Key::Num1, Term::L1),
+        (egui::Key::Num2, Term::L2),
+        (egui::Key::Num3, Term::L3Plus),
+    ] {
+        if pressed(key) {
+            toggle_term(app, term);
+        }
+    }
+    let settings = &mut app.state.settings;
+    if pressed(egui::Key::L) {
+        settings.light_mode = next(&LightMode::ALL, settings.light_mode);
+    }
+    if pressed(egui::Key::B) {
+        settings.brdf = next(&BrdfOverride::ALL, settings.brdf);
+    }
+    if pressed(egui::Key::Space) {
+        app.paused = !app.paused;
+    }
+    if ctx.input_mut(|i| i.consume_key(egui::Modifiers::COMMAND, egui::Key::S)) {
+        app.save_screenshot();
+    }
+}
+
+fn next<T: Copy + PartialEq>(all: &[T], current: T) -> T {
+    let index = all.iter().position(|&v| v == current).unwrap_or(0);
+    all[(index + 1) % all.len()]
+}
+
+/// Switches `term` on or off, keeping at least one term on.
+fn toggle_term(app: &mut LumiereApp, term: Term) {
+    let terms = app.state.settings.terms;
+    let toggled = terms.with(term, !terms.contains(term));
+    if !toggled.is_empty() {
+        app.state.settings.terms = toggled;
+    }
+}
+
+pub fn status_bar(app: &LumiereApp, ui: &mut egui::Ui, snapshot: &Snapshot) {
+    egui::Panel::bottom("status").show(ui, |ui| {
+        ui.horizontal_wrapped(|ui| {
+            let state = if app.paused {
+                "paused"
+            } else if snapshot.preview {
+                "preview"
+            } else if snapshot.idle {
+                "done"
+            } else {
+                "rendering"
+            };
+            ui.label(format!("{} spp", snapshot.samples_per_pixel()));
+            ui.separator();
+            ui.label(format!("{:.1} s", snapshot.elapsed.as_secs_f64()));
+            ui.separator();
+            ui.label(format!(
+                "{:.2} M samples/s",
+                snapshot.samples_per_second() / 1e6
+            ));
+            ui.separator();
+            ui.label(format!("{:.1} Mrays/s", snapshot.mrays_per_second()));
+            ui.separator();
+            let rays = snapshot.rays;
+            ui.label(format!(
+                "rays: {} camera, {} shadow, {} bounce",
+                rays.camera, rays.shadow, rays.bounce
+            ))
+            .on_hover_text("Rays traced since the last restart, by kind");
+            ui.separator();
+            ui.label(state);
+            if let Some(message) = &app.message {
+                ui.separator();
+                ui.label(message);
+            }
+        });
+    });
+}
+
+pub fn side_panel(app: &mut LumiereApp, ui: &mut egui::Ui) {
+    egui::Panel::left("controls")
+        .default_size(300.0)
+        .show(ui, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                terms_ui(app, ui);
+                lights_ui(app, ui);
+                materials_ui(app, ui);
+                camera_ui(app, ui);
+                display_ui(app, ui);
+                render_ui(app, ui);
+                scene_ui(app, ui);
+            });
+        });
+}
+
+fn terms_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+    egui::CollapsingHeader::new("Terms")
+        .default_open(true)
+        .show(ui, |ui| {
+            for term in Term::ALL {
+                let mut on = app.state.settings.terms.contains(term);
+                ui.horizontal(|ui| {
+                    let response = ui
+                        .checkbox(&mut on, term.label())
+                        .on_hover_text(term_tooltip(term));
+                    ui.label(egui::RichText::new(term.description()).weak().small())
+                        .on_hover_text(term_tooltip(term));
+                    if response.changed() {
+                        toggle_term(app, term);
+                    }
+                });
+            }
+        });
+}
+
+fn lights_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+    egui::CollapsingHeader::new("Lights").default_open(true).show(ui, |ui| {
+        let settings = &mut app.state.settings;
+        for (mode, text, hint) in [
+            (LightMode::Authored, "As authored", "The scene's own lights"),
+            (
+                LightMode::Point,
+                "All point",
+                "Every area light becomes a point light at its centroid, same power: hard shadows",
+            ),
+            (
+                LightMode::Area,
+                "All extended",
+                "Every point light becomes a sphere light, same power: soft shadows",
+            ),
+        ] {
+            ui.radio_value(&mut settings.light_mode, mode, text).on_hover_text(hint);
+        }
+        let diagonal = app.scene.bounds().diagonal().max(1e-3);
+        let mut radius = settings.light_radius.unwrap_or(0.02 * diagonal);
+        let slider = egui::Slider::new(&mut radius, (1e-3 * diagonal)..=(0.25 * diagonal))
+            .logarithmic(true)
+            .text("radius (m)");
+        let enabled = settings.light_mode == LightMode::Area;
+        if ui
+            .add_enabled(enabled, slider)
+            .on_hover_text("Radius of the sphere lights; their power stays the same, only the shadows change")
+            .changed()
+        {
+            settings.light_radius = Some(radius);
+        }
+    });
+}
+
+fn materials_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+    egui::CollapsingHeader::new("Materials")
+        .default_open(true)
+        .show(ui, |ui| {
+            let settings = &mut app.state.settings;
+            egui::ComboBox::from_label("BRDF")
+                .selected_text(brdf_text(settings.brdf))
+                .show_ui(ui, |ui| {
+                    for brdf in BrdfOverride::ALL {
+                        ui.selectable_value(&mut settings.brdf, brdf, brdf_text(brdf));
+                    }
+                });
+            ui.add_enabled(
+                settings.brdf == BrdfOverride::Phong,
+                egui::Slider::new(&mut settings.phong_exponent, 1.0..=10_000.0)
+                    .logarithmic(true)
+                    .text("Phong exponent"),
+            );
+        });
+}
+
+fn brdf_text(brdf: BrdfOverride) -> &'static str {
+    match brdf {
+        BrdfOverride::Authored => "As authored",
+        BrdfOverride::Lambert => "Lambert",
+        BrdfOverride::Phong => "Phong",
+        BrdfOverride::Mirror => "Mirror",
+    }
+}
+
+fn camera_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+    egui::CollapsingHeader::new("Camera")
+        .default_open(false)
+        .show(ui, |ui| {
+            let cameras = app.scene.cameras.clone();
+            egui::ComboBox::from_label("view")
+                .selected_text(app.camera.name.clone())
+                .show_ui(ui, |ui| {
+                    for camera in cameras {
+                        let name = camera.name.clone();
+                        ui.selectable_value(&mut app.camera, camera, name);
+                    }
+                });
+            if ui.button("Reset").clicked() {
+                app.camera = app.scene.default_camera();
+            }
+        });
+}
+
+fn display_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+    egui::CollapsingHeader::new("Display")
+        .default_open(true)
+        .show(ui, |ui| {
+            let display = &mut app.state.display;
+            ui.add(egui::Slider::new(&mut display.exposure, -10.0..=10.0).text("exposure (EV)"));
+            egui::ComboBox::from_label("tonemap")
+                .selected_text(display.tonemap.label())
+                .show_ui(ui, |ui| {
+                    for tonemap in Tonemap::ALL {
+                        ui.selectable_value(&mut display.tonemap, tonemap, tonemap.label());
+                    }
+                });
+        });
+}
+
+fn render_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+    egui::CollapsingHeader::new("Render")
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.horizontal(|ui| {
+                let text = if app.paused { "Resume" } else { "Pause" };
+                if ui.button(text).on_hover_text("Space").clicked() {
+                    app.paused = !app.paused;
+                }
+                if ui
+                    .button("Save screenshot")
+                    .on_hover_text("Ctrl+S: PNG as displayed, EXR, settings")
+                    .clicked()
+                {
+                    app.save_screenshot();
+                }
+            });
+            ui.horizontal(|ui| {
+                let mut stop = app.state.stop_at_spp.is_some();
+                ui.checkbox(&mut stop, "stop at");
+                let mut spp = app.state.stop_at_spp.unwrap_or(256);
+                ui.add_enabled(
+                    stop,
+                    egui::DragValue::new(&mut spp)
+                        .range(1..=1_000_000)
+                        .suffix(" spp"),
+                );
+                app.state.stop_at_spp = stop.then_some(spp);
+            });
+            let settings = &mut app.state.settings;
+            ui.horizontal(|ui| {
+                ui.label("size");
+                ui.add(egui::DragValue::new(&mut settings.width).range(16..=4096));
+                ui.label("×");
+                ui.add(egui::DragValue::new(&mut settings.height).range(16..=4096));
+            });
+            ui.add(
+                egui::DragValue::new(&mut settings.max_bounces)
+                    .range(1..=1000)
+                    .prefix("max bounces "),
+            );
+            ui.add(egui::DragValue::new(&mut settings.seed).prefix("seed "));
+            ui.checkbox(&mut app.state.per_term_exr, "also one EXR per term");
+            ui.horizontal(|ui| {
+                ui.label("save to");
+                ui.text_edit_singleline(&mut app.state.export_dir);
+            });
+        });
+}
+
+fn scene_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+    egui::CollapsingHeader::new("Scene")
+        .default_open(false)
+        .show(ui, |ui| {
+            ui.label(format!(
+                "{}: {} triangles, {} lights",
+                app.scene.name,
+                app.scene.triangles.len(),
+                app.scene.lights.len()
+            ));
+            ui.horizontal(|ui| {
+                let field = ui.text_edit_singleline(&mut app.scene_field);
+                let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+                if ui.button("Load").clicked() || enter {
+                    let spec = app.scene_field.clone();
+                    app.load_scene(&spec);
+                }
+            });
+            ui.label(
+                egui::RichText::new("or drop a .gltf/.glb file on the window")
+                    .weak()
+                    .small(),
+            );
+        });
+}
+
+/// The image, fitted to the free space, keeping the render's aspect.
+pub fn viewport(app: &LumiereApp, ui: &mut egui::Ui, snapshot: &std::sync::Arc<Snapshot>) {
+    egui::CentralPanel::default()
+        .frame(egui::Frame::new().fill(egui::Color32::from_gray(24)))
+        .show(ui, |ui| {
+            let available = ui.available_rect_before_wrap();
+            let settings = &app.state.settings;
+            let aspect = settings.width as f32 / settings.height as f32;
+            let size = if available.width() / available.height() > aspect {
+                egui::vec2(available.height() * aspect, available.height())
+            } else {
+                egui::vec2(available.width(), available.width() / aspect)
+            };
+            let rect = egui::Rect::from_center_size(available.center(), size);
+            ui.allocate_rect(available, egui::Sense::hover());
+            if !snapshot.radiance.is_empty() {
+                display::paint_image(ui, rect, std::sync::Arc::clone(snapshot), app.state.display);
+            }
+        });
+}
