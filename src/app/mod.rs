@@ -92,6 +92,8 @@ pub struct LumiereApp {
     /// Set by the screenshot callback: the outcome of saving the window.
     window_shot: Arc<Mutex<Option<Result<PathBuf, String>>>>,
     window_shot_requested: bool,
+    /// Where the image was drawn last frame (points).
+    image_rect: Option<egui::Rect>,
     exports: Vec<std::thread::JoinHandle<Result<String, String>>>,
 }
 
@@ -139,6 +141,7 @@ impl LumiereApp {
             screenshot: options.screenshot,
             window_shot: Arc::default(),
             window_shot_requested: false,
+            image_rect: None,
             exports: Vec::new(),
         })
     }
@@ -220,7 +223,20 @@ impl LumiereApp {
             .take();
         if let Some(outcome) = done {
             match outcome {
-                Ok(path) => eprintln!("saved {}", path.display()),
+                Ok(path) => {
+                    eprintln!("saved {}", path.display());
+                    if let Some(rect) = self.image_rect {
+                        // in screenshot pixels, for scripts that crop the image out
+                        let r = rect * ctx.pixels_per_point();
+                        eprintln!(
+                            "image at {:.0} {:.0} size {:.0} {:.0}",
+                            r.min.x,
+                            r.min.y,
+                            r.width(),
+                            r.height()
+                        );
+                    }
+                }
                 Err(e) => eprintln!("error: {e}"),
             }
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
@@ -291,7 +307,7 @@ impl eframe::App for LumiereApp {
         let snapshot = self.snapshot();
         panels::status_bar(self, ui, &snapshot);
         panels::side_panel(self, ui);
-        panels::viewport(self, ui, &snapshot);
+        self.image_rect = Some(panels::viewport(self, ui, &snapshot));
         self.sync_renderer();
         self.script_exit(&ctx, &snapshot);
     }

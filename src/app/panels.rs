@@ -265,22 +265,25 @@ fn render_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             });
             ui.horizontal(|ui| {
                 let mut stop = app.state.stop_at_spp.is_some();
-                ui.checkbox(&mut stop, "stop at");
+                let label = ui.checkbox(&mut stop, "stop at");
                 let mut spp = app.state.stop_at_spp.unwrap_or(256);
                 ui.add_enabled(
                     stop,
                     egui::DragValue::new(&mut spp)
                         .range(1..=1_000_000)
                         .suffix(" spp"),
-                );
+                )
+                .labelled_by(label.id);
                 app.state.stop_at_spp = stop.then_some(spp);
             });
             let settings = &mut app.state.settings;
             ui.horizontal(|ui| {
-                ui.label("size");
-                ui.add(egui::DragValue::new(&mut settings.width).range(16..=4096));
-                ui.label("×");
-                ui.add(egui::DragValue::new(&mut settings.height).range(16..=4096));
+                let width = ui.label("width");
+                ui.add(egui::DragValue::new(&mut settings.width).range(16..=4096))
+                    .labelled_by(width.id);
+                let height = ui.label("height");
+                ui.add(egui::DragValue::new(&mut settings.height).range(16..=4096))
+                    .labelled_by(height.id);
             });
             ui.add(
                 egui::DragValue::new(&mut settings.max_bounces)
@@ -290,8 +293,9 @@ fn render_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             ui.add(egui::DragValue::new(&mut settings.seed).prefix("seed "));
             ui.checkbox(&mut app.state.per_term_exr, "also one EXR per term");
             ui.horizontal(|ui| {
-                ui.label("save to");
-                ui.text_edit_singleline(&mut app.state.export_dir);
+                let label = ui.label("save to");
+                ui.text_edit_singleline(&mut app.state.export_dir)
+                    .labelled_by(label.id);
             });
         });
 }
@@ -307,7 +311,10 @@ fn scene_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 app.scene.lights.len()
             ));
             ui.horizontal(|ui| {
-                let field = ui.text_edit_singleline(&mut app.scene_field);
+                let label = ui.label("file");
+                let field = ui
+                    .text_edit_singleline(&mut app.scene_field)
+                    .labelled_by(label.id);
                 let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
                 if ui.button("Load").clicked() || enter {
                     let spec = app.scene_field.clone();
@@ -322,8 +329,12 @@ fn scene_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
         });
 }
 
-/// The image, fitted to the free space, keeping the render's aspect.
-pub fn viewport(app: &LumiereApp, ui: &mut egui::Ui, snapshot: &std::sync::Arc<Snapshot>) {
+/// The image, fitted to the free space, keeping the render's aspect; returns where.
+pub fn viewport(
+    app: &LumiereApp,
+    ui: &mut egui::Ui,
+    snapshot: &std::sync::Arc<Snapshot>,
+) -> egui::Rect {
     egui::CentralPanel::default()
         .frame(egui::Frame::new().fill(egui::Color32::from_gray(24)))
         .show(ui, |ui| {
@@ -335,10 +346,18 @@ pub fn viewport(app: &LumiereApp, ui: &mut egui::Ui, snapshot: &std::sync::Arc<S
             } else {
                 egui::vec2(available.width(), available.width() / aspect)
             };
-            let rect = egui::Rect::from_center_size(available.center(), size);
+            // whole physical pixels, so each film pixel maps to a fixed block of them
+            let ppp = ui.ctx().pixels_per_point();
+            let centred = egui::Rect::from_center_size(available.center(), size);
+            let rect = egui::Rect::from_min_max(
+                ((centred.min.to_vec2() * ppp).round() / ppp).to_pos2(),
+                ((centred.max.to_vec2() * ppp).round() / ppp).to_pos2(),
+            );
             ui.allocate_rect(available, egui::Sense::hover());
             if !snapshot.radiance.is_empty() {
                 display::paint_image(ui, rect, std::sync::Arc::clone(snapshot), app.state.display);
             }
-        });
+            rect
+        })
+        .inner
 }

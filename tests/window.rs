@@ -1,0 +1,185 @@
+//! End to end: the real viewer window (X11, wgpu on Vulkan or GL) renders to
+//! N spp and saves a screenshot of itself; the image region must match
+//! `lumiere render` with the same settings pixel for pixel (same seed, same
+//! sample indices), up to the shader's 8-bit rounding.
+//!
+//! Needs a display: DISPLAY, or `Xvfb` on the PATH (started here). Without
+//! either it says so and does nothing, unless LUMIERE_REQUIRE_DISPLAY=1 (CI),
+//! which makes that a failure.
+#![cfg(feature = "gui")]
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn lumiere() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_lumiere"))
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("lumiere-window-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+/// An X server for the test: the session's, or a private Xvfb.
+struct Display {
+    name: String,
+    xvfb: Option<Child>,
+}
+
+impl Drop for Display {
+    fn drop(&mut self) {
+        if let Some(child) = &mut self.xvfb {
+            let _ = child.kill();
+            let _ = child.wait();
+        }
+    }
+}
+
+fn display() -> Option<Display> {
+    if let Ok(name) = std::env::var("DISPLAY")
+        && !name.is_empty()
+    {
+        return Some(Display { name, xvfb: None });
+    }
+    let name = format!(":{}", 90 + std::process::id() % 9);
+    let child = Command::new("Xvfb")
+        .args([
+            name.as_str(),
+            "-screen",
+            "0",
+            "1280x800x24",
+            "-nolisten",
+            "tcp",
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .ok()?;
+    std::thread::sleep(Duration::from_millis(800));
+    Some(Display {
+        name,
+        xvfb: Some(child),
+    })
+}
+
+/// Runs `command`, killing it after `limit`.
+fn run_with_limit(mut command: Command, limit: Duration) -> std::process::Output {
+    let mut child = command
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > limit {
+            let _ = child.kill();
+            panic!("the viewer did not exit within {limit:?}");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    child.wait_with_output().unwrap()
+}
+
+/// "image at X Y size W H" from the viewer's stderr.
+fn image_rect(stderr: &str) -> [u32; 4] {
+    let line = stderr
+        .lines()
+        .find_map(|l| l.strip_prefix("image at "))
+        .unwrap_or_else(|| panic!("the viewer did not report its image rectangle:\n{stderr}"));
+    let numbers: Vec<u32> = line
+        .split_whitespace()
+        .filter_map(|w| w.parse().ok())
+        .collect();
+    [numbers[0], numbers[1], numbers[2], numbers[3]]
+}
+
+fn load_rgb(path: &Path) -> image::RgbImage {
+    image::open(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .to_rgb8()
+}
+
+#[test]
+fn viewer_screenshot_matches_the_command_line_render() {
+    let Some(display) = display() else {
+        assert!(
+            std::env::var("LUMIERE_REQUIRE_DISPLAY").is_err(),
+            "no DISPLAY and no Xvfb: install xvfb (see .ci/run)"
+        );
+        eprintln!("skipped: no DISPLAY and no Xvfb on the PATH");
+        return;
+    };
+    let settings = [
+        "--width",
+        "160",
+        "--height",
+        "120",
+        "--terms",
+        "L0,L1",
+        "--exposure",
+        "1",
+    ];
+    let shot = scratch("window.png");
+    let runtime_dir = scratch("xdg");
+    std::fs::create_dir_all(&runtime_dir).unwrap();
+    let mut view = lumiere();
+    view.args(["view", "cornell"])
+        .args(settings)
+        .args(["--exit-after-spp", "32", "--screenshot"])
+        .arg(&shot)
+        .env("DISPLAY", &display.name)
+        .env("XDG_RUNTIME_DIR", &runtime_dir)
+        .env_remove("WAYLAND_DISPLAY");
+    let output = run_with_limit(view, Duration::from_secs(180));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "the viewer failed:\n{stderr}");
+
+    let reference = scratch("render.png");
+    let render = lumiere()
+        .args(["render", "cornell", "-o"])
+        .arg(&reference)
+        .args(settings)
+        .args(["--spp", "32"])
+        .output()
+        .unwrap();
+    assert!(render.status.success());
+
+    let window = load_rgb(&shot);
+    let expected = load_rgb(&reference);
+    // the panel is there: the window is wider than the image and not uniform on the left
+    let [x, y, w, h] = image_rect(&stderr);
+    assert!(
+        x > 100 && window.width() >= x + w && window.height() >= y + h,
+        "image rect {x} {y} {w} {h}"
+    );
+    let left: Vec<_> = (0..window.height())
+        .map(|j| window.get_pixel(20, j).0)
+        .collect();
+    assert!(
+        left.iter().any(|p| *p != left[0]),
+        "the side panel is missing"
+    );
+
+    // sample the displayed image at each film pixel's centre
+    let (mut worst, mut total) = (0i32, 0i64);
+    for j in 0..expected.height() {
+        for i in 0..expected.width() {
+            let sx = x + ((i as f32 + 0.5) * w as f32 / expected.width() as f32) as u32;
+            let sy = y + ((j as f32 + 0.5) * h as f32 / expected.height() as f32) as u32;
+            let shown = window.get_pixel(sx, sy).0;
+            let want = expected.get_pixel(i, j).0;
+            for c in 0..3 {
+                let d = (shown[c] as i32 - want[c] as i32).abs();
+                worst = worst.max(d);
+                total += d as i64;
+            }
+        }
+    }
+    let mean = total as f64 / (expected.width() * expected.height() * 3) as f64;
+    assert!(
+        worst <= 2 && mean < 0.5,
+        "displayed image differs from the render: worst {worst}/255, mean {mean:.3}"
+    );
+}
