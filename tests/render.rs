@@ -222,3 +222,66 @@ fn corpus_files_render_or_fail_cleanly() {
         }
     }
 }
+
+/// A screenshot's sidecar reproduces the image: `lumiere render --settings`
+/// renders with its scene, camera, settings and sample count.
+#[test]
+fn cli_render_reproduces_a_sidecar() {
+    use lumiere::camera::CameraRays;
+    use lumiere::sidecar::Sidecar;
+
+    let scene = builtin::cornell();
+    let mut camera = scene.default_camera();
+    camera.world_from_camera = glam::Affine3A::from_translation(glam::Vec3::new(0.05, 0.0, 0.1))
+        * camera.world_from_camera;
+    let mut settings = small(24, 18, TermSet::only(Term::L1));
+    settings.brdf = lumiere::BrdfOverride::Phong;
+    settings.seed = 3;
+    let sidecar = Sidecar {
+        scene: "cornell".into(),
+        camera: camera.clone(),
+        settings: settings.clone(),
+        display: Default::default(),
+        samples_per_pixel: 3,
+    };
+    let json = temp_path("shot.json");
+    sidecar.save(&json).unwrap();
+    let exr = temp_path("again.exr");
+    let out = lumiere()
+        .args(["render", "--settings"])
+        .arg(&json)
+        .arg("-o")
+        .arg(&exr)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).starts_with("3 spp"));
+
+    let mut context = lumiere::RenderContext::new(scene, settings.clone());
+    context.camera = CameraRays::new(&camera, 24, 18);
+    let mut film = lumiere::Film::new(24, 18);
+    lumiere::render::render(
+        &context,
+        &mut film,
+        lumiere::render::Budget::Samples(3),
+        |_| {},
+    );
+    let expected = film.radiance(settings.terms);
+    let (_, _, pixels) = lumiere::export::load_exr(&exr).unwrap();
+    assert_eq!(pixels, expected, "the sidecar's render differs");
+
+    std::fs::write(&json, b"{\"scene\": 3}").unwrap();
+    let out = lumiere()
+        .args(["render", "--settings"])
+        .arg(&json)
+        .arg("-o")
+        .arg(&exr)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("shot.json"));
+}

@@ -118,3 +118,76 @@ fn pause_button_and_keyboard_shortcuts() {
     harness.run_steps(2);
     assert_eq!(harness.state().state.settings.brdf, BrdfOverride::Lambert);
 }
+
+/// Presses and releases the primary button at `from`, moving to `to` in between.
+fn mouse_drag(harness: &mut Harness<'static, LumiereApp>, from: egui::Pos2, to: egui::Pos2) {
+    let button = |pos, pressed| egui::Event::PointerButton {
+        pos,
+        button: egui::PointerButton::Primary,
+        pressed,
+        modifiers: egui::Modifiers::default(),
+    };
+    harness.event(egui::Event::PointerMoved(from));
+    harness.step();
+    harness.event(button(from, true));
+    harness.step();
+    // a click must be short: no intermediate frames when the pointer does not move
+    if to != from {
+        for k in 1..=4 {
+            harness.event(egui::Event::PointerMoved(
+                from + (to - from) * (k as f32 / 4.0),
+            ));
+            harness.step();
+        }
+    }
+    harness.event(button(to, false));
+    harness.run_steps(2);
+}
+
+#[test]
+fn clicking_an_object_selects_it_and_its_model_can_change_alone() {
+    let mut harness = harness();
+    let rect = harness.state().image_rect().expect("the image is drawn");
+    // the red wall: left of the image, half-way down
+    let on_red_wall = rect.min + egui::vec2(rect.width() * 0.22, rect.height() * 0.5);
+    mouse_drag(&mut harness, on_red_wall, on_red_wall);
+    let app = harness.state();
+    let selected = app.selected.expect("a click selects an object") as usize;
+    assert_eq!(app.scene.objects[selected].name, "red wall (left)");
+
+    harness.get_by_label("model").click();
+    harness.run_steps(2);
+    harness.get_by_label("Mirror").click();
+    harness.run_steps(2);
+    let scene = &harness.state().scene;
+    let material = &scene.materials[scene.objects[selected].material as usize];
+    assert_eq!(material.brdf_model(), lumiere::scene::BrdfModel::Mirror);
+    let floor = scene.objects.iter().find(|o| o.name == "floor").unwrap();
+    assert_eq!(
+        scene.materials[floor.material as usize].brdf_model(),
+        lumiere::scene::BrdfModel::Lambert,
+        "other objects keep their material"
+    );
+}
+
+#[test]
+fn dragging_the_image_orbits_the_camera_and_restarts() {
+    let mut harness = harness();
+    let before = wait_for(&mut harness, "a pass", |s| s.samples_per_pixel() >= 1);
+    let camera = harness.state().camera.clone();
+    let rect = harness.state().image_rect().expect("the image is drawn");
+    mouse_drag(
+        &mut harness,
+        rect.center(),
+        rect.center() + egui::vec2(60.0, 0.0),
+    );
+    let moved = &harness.state().camera;
+    assert_ne!(
+        moved.world_from_camera, camera.world_from_camera,
+        "a drag must turn the camera"
+    );
+    assert_eq!(harness.state().selected, None, "a drag is not a click");
+    wait_for(&mut harness, "the restart", |s| {
+        s.restarts > before.restarts
+    });
+}

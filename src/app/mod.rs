@@ -7,6 +7,7 @@
 
 pub mod display;
 mod export;
+mod interact;
 mod panels;
 
 use std::path::PathBuf;
@@ -94,6 +95,11 @@ pub struct LumiereApp {
     window_shot_requested: bool,
     /// Where the image was drawn last frame (points).
     image_rect: Option<egui::Rect>,
+    orbit: interact::Orbit,
+    /// The object clicked last, if any.
+    pub selected: Option<u32>,
+    /// A BVH over every triangle of the scene it was built for, to pick objects.
+    picking: Option<(Arc<Scene>, crate::accel::Accel)>,
     exports: Vec<std::thread::JoinHandle<Result<String, String>>>,
 }
 
@@ -142,6 +148,9 @@ impl LumiereApp {
             window_shot: Arc::default(),
             window_shot_requested: false,
             image_rect: None,
+            orbit: interact::Orbit::default(),
+            selected: None,
+            picking: None,
             exports: Vec::new(),
         })
     }
@@ -171,6 +180,11 @@ impl LumiereApp {
         }
     }
 
+    /// Where the image was drawn last frame, in points.
+    pub fn image_rect(&self) -> Option<egui::Rect> {
+        self.image_rect
+    }
+
     /// The latest image the worker published.
     pub fn snapshot(&self) -> Arc<Snapshot> {
         self.renderer.snapshot()
@@ -185,6 +199,8 @@ impl LumiereApp {
                     None => format!("loaded {spec}"),
                 });
                 self.camera = scene.default_camera();
+                self.orbit = interact::Orbit::default();
+                self.selected = None;
                 self.scene = Arc::new(scene);
                 self.scene_spec = spec.to_string();
                 self.scene_field = spec.to_string();

@@ -4,7 +4,7 @@
 
 use eframe::egui;
 
-use super::{LumiereApp, display};
+use super::{LumiereApp, display, interact};
 use crate::progressive::Snapshot;
 use crate::settings::{BrdfOverride, LightMode, Term, Tonemap};
 
@@ -119,6 +119,7 @@ pub fn side_panel(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 terms_ui(app, ui);
                 lights_ui(app, ui);
                 materials_ui(app, ui);
+                interact::selection_ui(app, ui);
                 camera_ui(app, ui);
                 display_ui(app, ui);
                 render_ui(app, ui);
@@ -171,13 +172,15 @@ fn lights_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             .logarithmic(true)
             .text("radius (m)");
         let enabled = settings.light_mode == LightMode::Area;
-        if ui
+        let radius_changed = ui
             .add_enabled(enabled, slider)
             .on_hover_text("Radius of the sphere lights; their power stays the same, only the shadows change")
-            .changed()
-        {
+            .changed();
+        if radius_changed {
             settings.light_radius = Some(radius);
         }
+        ui.label(egui::RichText::new("power of each light").weak().small());
+        interact::light_power_ui(app, ui);
     });
 }
 
@@ -221,12 +224,26 @@ fn camera_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 .show_ui(ui, |ui| {
                     for camera in cameras {
                         let name = camera.name.clone();
-                        ui.selectable_value(&mut app.camera, camera, name);
+                        if ui.selectable_value(&mut app.camera, camera, name).clicked() {
+                            app.orbit = interact::Orbit::default();
+                        }
                     }
                 });
-            if ui.button("Reset").clicked() {
+            if ui
+                .button("Reset")
+                .on_hover_text("Back to the scene's first camera")
+                .clicked()
+            {
                 app.camera = app.scene.default_camera();
+                app.orbit = interact::Orbit::default();
             }
+            ui.label(
+                egui::RichText::new(
+                    "drag: orbit · right/middle drag: pan · scroll: dolly · click: select",
+                )
+                .weak()
+                .small(),
+            );
         });
 }
 
@@ -331,7 +348,7 @@ fn scene_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
 
 /// The image, fitted to the free space, keeping the render's aspect; returns where.
 pub fn viewport(
-    app: &LumiereApp,
+    app: &mut LumiereApp,
     ui: &mut egui::Ui,
     snapshot: &std::sync::Arc<Snapshot>,
 ) -> egui::Rect {
@@ -353,7 +370,8 @@ pub fn viewport(
                 ((centred.min.to_vec2() * ppp).round() / ppp).to_pos2(),
                 ((centred.max.to_vec2() * ppp).round() / ppp).to_pos2(),
             );
-            ui.allocate_rect(available, egui::Sense::hover());
+            let response = ui.allocate_rect(available, egui::Sense::click_and_drag());
+            interact::viewport_input(app, &response, rect);
             if !snapshot.radiance.is_empty() {
                 display::paint_image(ui, rect, std::sync::Arc::clone(snapshot), app.state.display);
             }

@@ -1,0 +1,325 @@
+//! Mouse work in the viewport and edits of the scene: orbit / pan / dolly
+//! of the camera, picking an object by casting a ray through the clicked
+//! pixel, and per-object and per-light edits (copy-on-write of the scene, so
+//! the worker's copy is never touched while it renders).
+
+use std::sync::Arc;
+
+use eframe::egui;
+use glam::{Affine3A, Quat, Vec2, Vec3};
+
+use super::LumiereApp;
+use crate::accel::{Accel, Hit};
+use crate::camera::CameraRays;
+use crate::scene::{BrdfModel, Camera, Material, Scene};
+
+/// Radians per point of mouse drag.
+const ORBIT_SPEED: f32 = 0.008;
+
+/// The point the camera orbits around, kept between drags.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Orbit {
+    pub target: Option<Vec3>,
+}
+
+fn position(camera: &Camera) -> Vec3 {
+    camera.world_from_camera.translation.into()
+}
+
+fn forward(camera: &Camera) -> Vec3 {
+    camera
+        .world_from_camera
+        .transform_vector3(-Vec3::Z)
+        .normalize()
+}
+
+/// A camera at `eye` looking at `target`, +Y up, with the projection of `like`.
+fn looking_at(like: &Camera, eye: Vec3, target: Vec3) -> Camera {
+    let forward = (target - eye).normalize_or(-Vec3::Z);
+    let right = forward.cross(Vec3::Y).normalize_or(Vec3::X);
+    let up = right.cross(forward);
+    Camera {
+        world_from_camera: Affine3A::from_cols(
+            right.into(),
+            up.into(),
+            (-forward).into(),
+            eye.into(),
+        ),
+        ..like.clone()
+    }
+}
+
+impl Orbit {
+    /// The orbit centre: kept, or the scene's centre projected on the view axis.
+    fn target(&mut self, camera: &Camera, scene: &Scene) -> Vec3 {
+        *self.target.get_or_insert_with(|| {
+            let eye = position(camera);
+            let distance = (scene.bounds().center() - eye).dot(forward(camera));
+            eye + forward(camera) * distance.max(1e-3 * scene.bounds().diagonal().max(1e-3))
+        })
+    }
+
+    /// Turns the camera around the target by a drag of `delta` points.
+    pub fn orbit(&mut self, camera: &Camera, scene: &Scene, delta: egui::Vec2) -> Camera {
+        let target = self.target(camera, scene);
+        let offset = position(camera) - target;
+        let right = camera
+            .world_from_camera
+            .transform_vector3(Vec3::X)
+            .normalize();
+        let yaw = Quat::from_axis_angle(Vec3::Y, -delta.x * ORBIT_SPEED);
+        let pitch = Quat::from_axis_angle(right, -delta.y * ORBIT_SPEED);
+        let turned = yaw * pitch * offset;
+        // stop short of the poles, where "up" is undefined
+        let offset = if turned.normalize().y.abs() < 0.98 {
+            turned
+        } else {
+            yaw * offset
+        };
+        looking_at(camera, target + offset, target)
+    }
+
+    /// Slides camera and target sideways by a drag of `delta` points in a view `height` points tall.
+    pub fn pan(
+        &mut self,
+        camera: &Camera,
+        scene: &Scene,
+        delta: egui::Vec2,
+        height: f32,
+    ) -> Camera {
+        let target = self.target(camera, scene);
+        let distance = (position(camera) - target).length();
+        let scale = 2.0 * distance * 0.4 / height.max(1.0);
+        let right = camera
+            .world_from_camera
+            .transform_vector3(Vec3::X)
+            .normalize();
+        let up = camera
+            .world_from_camera
+            .transform_vector3(Vec3::Y)
+            .normalize();
+        let shift = (-delta.x * right + delta.y * up) * scale;
+        self.target = Some(target + shift);
+        Camera {
+            world_from_camera: Affine3A::from_translation(shift) * camera.world_from_camera,
+            ..camera.clone()
+        }
+    }
+
+    /// Moves the camera towards the target (positive `amount`) or away.
+    pub fn dolly(&mut self, camera: &Camera, scene: &Scene, amount: f32) -> Camera {
+        let target = self.target(camera, scene);
+        let factor = (-amount * 0.002).exp();
+        looking_at(
+            camera,
+            target + (position(camera) - target) * factor,
+            target,
+        )
+    }
+}
+
+/// Handles the viewport's mouse input for the image drawn in `rect`.
+pub fn viewport_input(app: &mut LumiereApp, response: &egui::Response, rect: egui::Rect) {
+    let scene = Arc::clone(&app.scene);
+    if response.dragged_by(egui::PointerButton::Primary) {
+        app.camera = app.orbit.orbit(&app.camera, &scene, response.drag_delta());
+    } else if response.dragged_by(egui::PointerButton::Secondary)
+        || response.dragged_by(egui::PointerButton::Middle)
+    {
+        app.camera = app
+            .orbit
+            .pan(&app.camera, &scene, response.drag_delta(), rect.height());
+    }
+    if response.hovered() {
+        let scroll = response.ctx.input(|i| i.smooth_scroll_delta.y);
+        if scroll != 0.0 {
+            app.camera = app.orbit.dolly(&app.camera, &scene, scroll);
+        }
+    }
+    if response.clicked()
+        && let Some(pointer) = response.interact_pointer_pos()
+        && rect.contains(pointer)
+    {
+        let uv = (pointer - rect.min) / rect.size();
+        app.selected = app.pick(Vec2::new(uv.x, uv.y));
+    }
+}
+
+impl LumiereApp {
+    /// The object under image coordinates `uv` ∈ [0,1]² (top-left origin).
+    pub fn pick(&mut self, uv: Vec2) -> Option<u32> {
+        let scene = Arc::clone(&self.scene);
+        let fresh = self
+            .picking
+            .as_ref()
+            .is_some_and(|(s, _)| Arc::ptr_eq(s, &scene));
+        if !fresh {
+            // all triangles, whatever the light mode: emitters can be selected too
+            self.picking = Some((
+                Arc::clone(&scene),
+                Accel::build(&scene, |_| true, Vec::new()),
+            ));
+        }
+        let (_, accel) = self.picking.as_ref()?;
+        let settings = &self.state.settings;
+        let rays = CameraRays::new(&self.camera, settings.width, settings.height);
+        let pixel = uv * Vec2::new(settings.width as f32, settings.height as f32);
+        let x = (pixel.x as u32).min(settings.width - 1);
+        let y = (pixel.y as u32).min(settings.height - 1);
+        let ray = rays.generate(x, y, pixel.fract());
+        match accel.closest_hit(&ray)? {
+            Hit::Triangle { triangle, .. } => Some(scene.triangles[triangle as usize].object),
+            Hit::Sphere { .. } => None,
+        }
+    }
+
+    /// The material of `object`, made its own first (a copy if other objects share it).
+    pub fn own_material(&mut self, object: u32) -> &mut Material {
+        let scene = Arc::make_mut(&mut self.scene);
+        let current = scene.objects[object as usize].material;
+        let shared = scene
+            .objects
+            .iter()
+            .enumerate()
+            .any(|(i, o)| i as u32 != object && o.material == current);
+        let material = if shared {
+            let mut copy = scene.materials[current as usize].clone();
+            copy.name = format!("{} ({})", copy.name, scene.objects[object as usize].name);
+            let id = scene.add_material(copy);
+            scene.objects[object as usize].material = id;
+            for t in scene.triangles.iter_mut().filter(|t| t.object == object) {
+                t.material = id;
+            }
+            id
+        } else {
+            current
+        };
+        &mut scene.materials[material as usize]
+    }
+}
+
+/// The course's model of a material, as metallic-roughness parameters.
+pub fn set_model(material: &mut Material, model: BrdfModel) {
+    let (metallic, roughness) = match model {
+        BrdfModel::Lambert => (0.0, 1.0),
+        BrdfModel::Mirror => (1.0, 0.0),
+        // invert n = 2/α² − 2 with α = roughness²
+        BrdfModel::Phong { exponent } => (0.0, (2.0 / (exponent + 2.0)).sqrt().sqrt()),
+    };
+    material.metallic = metallic;
+    material.roughness = roughness;
+}
+
+/// The selected object's controls: its reflection model and colour.
+pub fn selection_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+    egui::CollapsingHeader::new("Selection")
+        .default_open(true)
+        .show(ui, |ui| {
+            let Some(object) = app
+                .selected
+                .filter(|&o| (o as usize) < app.scene.objects.len())
+            else {
+                ui.label(
+                    egui::RichText::new("click an object in the image to select it")
+                        .weak()
+                        .small(),
+                );
+                return;
+            };
+            let name = app.scene.objects[object as usize].name.clone();
+            let material =
+                &app.scene.materials[app.scene.objects[object as usize].material as usize];
+            let model = material.brdf_model();
+            let mut color = material.base_color.to_array();
+            ui.label(format!("{name} ({})", material.name));
+            let mut chosen = model;
+            egui::ComboBox::from_label("model")
+                .selected_text(match model {
+                    BrdfModel::Lambert => "Lambert",
+                    BrdfModel::Phong { .. } => "Phong",
+                    BrdfModel::Mirror => "Mirror",
+                })
+                .show_ui(ui, |ui| {
+                    ui.selectable_value(&mut chosen, BrdfModel::Lambert, "Lambert");
+                    ui.selectable_value(&mut chosen, BrdfModel::Phong { exponent: 32.0 }, "Phong");
+                    ui.selectable_value(&mut chosen, BrdfModel::Mirror, "Mirror");
+                });
+            let mut exponent = match model {
+                BrdfModel::Phong { exponent } => exponent,
+                _ => 32.0,
+            };
+            let exponent_changed = matches!(model, BrdfModel::Phong { .. })
+                && ui
+                    .add(
+                        egui::Slider::new(&mut exponent, 1.0..=10_000.0)
+                            .logarithmic(true)
+                            .text("exponent"),
+                    )
+                    .changed();
+            let color_changed = ui
+                .horizontal(|ui| {
+                    let label = ui.label("colour");
+                    ui.color_edit_button_rgb(&mut color)
+                        .labelled_by(label.id)
+                        .changed()
+                })
+                .inner;
+            if chosen != model {
+                set_model(app.own_material(object), chosen);
+            }
+            if exponent_changed {
+                set_model(app.own_material(object), BrdfModel::Phong { exponent });
+            }
+            if color_changed {
+                app.own_material(object).base_color = Vec3::from_array(color);
+            }
+        });
+}
+
+/// Each light's power: punctual lights' intensity, emissive materials' radiance.
+pub fn light_power_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+    let scene = Arc::clone(&app.scene);
+    for (i, light) in scene.lights.iter().enumerate() {
+        let mut strength = light.intensity.max_element();
+        let unit = if light.kind == crate::scene::PunctualKind::Directional {
+            "W/m²"
+        } else {
+            "W/sr"
+        };
+        if power_field(ui, &mut strength, &format!("{} ({unit})", light.name)) {
+            let light = &mut Arc::make_mut(&mut app.scene).lights[i];
+            let colour = light.intensity / light.intensity.max_element().max(1e-12);
+            let colour = if colour == Vec3::ZERO {
+                Vec3::ONE
+            } else {
+                colour
+            };
+            light.intensity = colour * strength;
+        }
+    }
+    for (i, material) in scene
+        .materials
+        .iter()
+        .enumerate()
+        .filter(|(_, m)| m.is_emissive())
+    {
+        let mut strength = material.emission.max_element();
+        if power_field(ui, &mut strength, &format!("{} (W/m²/sr)", material.name)) {
+            let material = &mut Arc::make_mut(&mut app.scene).materials[i];
+            let colour = material.emission / material.emission.max_element();
+            material.emission = colour * strength.max(1e-6);
+        }
+    }
+}
+
+/// A labelled number field for a light's strength; true when it changed.
+fn power_field(ui: &mut egui::Ui, value: &mut f32, label: &str) -> bool {
+    ui.horizontal(|ui| {
+        let speed = (*value * 0.01).max(1e-3);
+        let name = ui.label(label);
+        ui.add(egui::DragValue::new(value).speed(speed).range(0.0..=1e9))
+            .labelled_by(name.id)
+            .changed()
+    })
+    .inner
+}
