@@ -110,6 +110,9 @@ struct ViewArgs {
     /// With --exit-after-spp: a PNG of the whole window, taken by the viewer.
     #[arg(long, requires = "exit_after_spp")]
     screenshot: Option<PathBuf>,
+    /// Measure the time from a toggle to the preview on screen and the UI frame time, print them, exit.
+    #[arg(long, conflicts_with_all = ["exit_after_spp", "screenshot"])]
+    bench: bool,
     #[command(flatten)]
     options: SceneOptions,
 }
@@ -301,6 +304,7 @@ fn run_view(args: ViewArgs, restore: bool) -> Result<(), Failure> {
         exit_after_spp: args.exit_after_spp,
         screenshot: args.screenshot,
         restore,
+        bench: args.bench,
     };
     lumiere::app::run(options).map_err(|e| runtime(anyhow::anyhow!(e)))
 }

@@ -5,6 +5,7 @@
 //! through the wgpu blit of [`display`]. Settings persist between runs
 //! (eframe storage); runtime handles (worker, scene) do not.
 
+mod bench;
 pub mod display;
 mod export;
 mod interact;
@@ -32,6 +33,8 @@ pub struct ViewOptions {
     pub screenshot: Option<PathBuf>,
     /// Restore the settings of the previous run (not for scripted runs).
     pub restore: bool,
+    /// Measure toggle-to-preview latency and UI frame times, print them and exit.
+    pub bench: bool,
 }
 
 impl Default for ViewOptions {
@@ -43,6 +46,7 @@ impl Default for ViewOptions {
             exit_after_spp: None,
             screenshot: None,
             restore: false,
+            bench: false,
         }
     }
 }
@@ -100,6 +104,7 @@ pub struct LumiereApp {
     pub selected: Option<u32>,
     /// A BVH over every triangle of the scene it was built for, to pick objects.
     picking: Option<(Arc<Scene>, crate::accel::Accel)>,
+    bench: Option<bench::Bench>,
     exports: Vec<std::thread::JoinHandle<Result<String, String>>>,
 }
 
@@ -151,6 +156,7 @@ impl LumiereApp {
             orbit: interact::Orbit::default(),
             selected: None,
             picking: None,
+            bench: options.bench.then(bench::Bench::default),
             exports: Vec::new(),
         })
     }
@@ -261,6 +267,37 @@ impl LumiereApp {
         }
     }
 
+    /// `--bench`: records this frame and toggles the BRDF when it is time.
+    fn bench_step(
+        &mut self,
+        ctx: &egui::Context,
+        snapshot: &Snapshot,
+        started: std::time::Instant,
+    ) {
+        let Some(bench) = &mut self.bench else {
+            return;
+        };
+        if !snapshot.idle {
+            bench.frame_built(started.elapsed());
+        }
+        match bench.step(snapshot, self.state.settings.brdf) {
+            bench::BenchStep::Wait => ctx.request_repaint(),
+            bench::BenchStep::Toggle(brdf) => {
+                self.state.settings.brdf = brdf;
+                self.sync_renderer();
+                if let Some(bench) = &mut self.bench {
+                    bench.posted(snapshot.generation);
+                }
+                ctx.request_repaint();
+            }
+            bench::BenchStep::Finished(report) => {
+                println!("{report}");
+                self.bench = None;
+                ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            }
+        }
+    }
+
     /// Saves the image as displayed (PNG), its radiance (EXR), optionally one
     /// EXR per term, and the JSON sidecar, on a background thread.
     pub fn save_screenshot(&mut self) {
@@ -316,6 +353,10 @@ impl LumiereApp {
 
 impl eframe::App for LumiereApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        let started = std::time::Instant::now();
+        if let Some(bench) = &mut self.bench {
+            bench.frame_started(started);
+        }
         let ctx = ui.ctx().clone();
         self.dropped_files(&ctx);
         self.collect_exports();
@@ -324,6 +365,7 @@ impl eframe::App for LumiereApp {
         panels::status_bar(self, ui, &snapshot);
         panels::side_panel(self, ui);
         self.image_rect = Some(panels::viewport(self, ui, &snapshot));
+        self.bench_step(&ctx, &snapshot, started);
         self.sync_renderer();
         self.script_exit(&ctx, &snapshot);
     }
