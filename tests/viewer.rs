@@ -191,3 +191,19 @@ fn dragging_the_image_orbits_the_camera_and_restarts() {
         s.restarts > before.restarts
     });
 }
+
+#[test]
+fn pixel_zoom_shows_each_film_pixel_as_a_square() {
+    let mut harness = harness();
+    harness.get_by_label("4×").click();
+    harness.run_steps(3);
+    let rect = harness.state().image_rect().expect("the image is drawn");
+    let ppp = harness.ctx.pixels_per_point();
+    assert_eq!(
+        (rect.width() * ppp, rect.height() * ppp),
+        (64.0 * 4.0, 48.0 * 4.0)
+    );
+    harness.get_by_label("Fit").click();
+    harness.run_steps(3);
+    assert!(harness.state().image_rect().unwrap().width() > 64.0 * 4.0 / ppp);
+}

@@ -121,7 +121,10 @@ impl Orbit {
 /// Handles the viewport's mouse input for the image drawn in `rect`.
 pub fn viewport_input(app: &mut LumiereApp, response: &egui::Response, rect: egui::Rect) {
     let scene = Arc::clone(&app.scene);
-    if response.dragged_by(egui::PointerButton::Primary) {
+    let shift = response.ctx.input(|i| i.modifiers.shift);
+    if shift && app.zoom.is_some() && response.dragged() {
+        app.pan += response.drag_delta();
+    } else if response.dragged_by(egui::PointerButton::Primary) {
         app.camera = app.orbit.orbit(&app.camera, &scene, response.drag_delta());
     } else if response.dragged_by(egui::PointerButton::Secondary)
         || response.dragged_by(egui::PointerButton::Middle)

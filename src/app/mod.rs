@@ -105,6 +105,10 @@ pub struct LumiereApp {
     /// A BVH over every triangle of the scene it was built for, to pick objects.
     picking: Option<(Arc<Scene>, crate::accel::Accel)>,
     bench: Option<bench::Bench>,
+    /// Screen pixels per film pixel; `None` fits the image to the window.
+    pub zoom: Option<u32>,
+    /// Offset of the zoomed image from the centre, in points.
+    pub pan: egui::Vec2,
     exports: Vec<std::thread::JoinHandle<Result<String, String>>>,
 }
 
@@ -157,6 +161,8 @@ impl LumiereApp {
             selected: None,
             picking: None,
             bench: options.bench.then(bench::Bench::default),
+            zoom: None,
+            pan: egui::Vec2::ZERO,
             exports: Vec::new(),
         })
     }

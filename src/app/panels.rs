@@ -251,6 +251,23 @@ fn display_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
     egui::CollapsingHeader::new("Display")
         .default_open(true)
         .show(ui, |ui| {
+            ui.horizontal(|ui| {
+                ui.label("zoom");
+                for (zoom, text) in [
+                    (None, "Fit"),
+                    (Some(1), "1:1"),
+                    (Some(2), "2×"),
+                    (Some(4), "4×"),
+                    (Some(8), "8×"),
+                ] {
+                    if ui.selectable_label(app.zoom == zoom, text).clicked() {
+                        app.zoom = zoom;
+                        app.pan = egui::Vec2::ZERO;
+                    }
+                }
+            })
+            .response
+            .on_hover_text("Screen pixels per film pixel (nearest neighbour); Shift+drag pans");
             let display = &mut app.state.display;
             ui.add(egui::Slider::new(&mut display.exposure, -10.0..=10.0).text("exposure (EV)"));
             egui::ComboBox::from_label("tonemap")
@@ -357,15 +374,23 @@ pub fn viewport(
         .show(ui, |ui| {
             let available = ui.available_rect_before_wrap();
             let settings = &app.state.settings;
-            let aspect = settings.width as f32 / settings.height as f32;
-            let size = if available.width() / available.height() > aspect {
-                egui::vec2(available.height() * aspect, available.height())
-            } else {
-                egui::vec2(available.width(), available.width() / aspect)
+            let ppp = ui.ctx().pixels_per_point();
+            let film = egui::vec2(settings.width as f32, settings.height as f32);
+            let (size, centre) = match app.zoom {
+                // nearest neighbour: each film pixel is a square of `zoom` screen pixels
+                Some(zoom) => (film * zoom as f32 / ppp, available.center() + app.pan),
+                None => {
+                    let aspect = film.x / film.y;
+                    let size = if available.width() / available.height() > aspect {
+                        egui::vec2(available.height() * aspect, available.height())
+                    } else {
+                        egui::vec2(available.width(), available.width() / aspect)
+                    };
+                    (size, available.center())
+                }
             };
             // whole physical pixels, so each film pixel maps to a fixed block of them
-            let ppp = ui.ctx().pixels_per_point();
-            let centred = egui::Rect::from_center_size(available.center(), size);
+            let centred = egui::Rect::from_center_size(centre, size);
             let rect = egui::Rect::from_min_max(
                 ((centred.min.to_vec2() * ppp).round() / ppp).to_pos2(),
                 ((centred.max.to_vec2() * ppp).round() / ppp).to_pos2(),
