@@ -149,11 +149,16 @@ impl Accel {
                 }
             );
         }
-        let mut hit = best.map(|(id, h)| Hit::Triangle {
+        let hit = best.map(|(id, h)| Hit::Triangle {
             t: h.t,
             triangle: self.scene_triangle[id as usize],
             b: Vec3::new(h.b0, h.b1, h.b2),
         });
+        self.nearer_sphere(ray, hit)
+    }
+
+    /// `hit`, or the nearest sphere `ray` meets before it.
+    fn nearer_sphere(&self, ray: &Ray, mut hit: Option<Hit>) -> Option<Hit> {
         let mut t_max = hit.map_or(ray.t_max, |h| h.t());
         for (i, sphere) in self.spheres.iter().enumerate() {
             if let Some(t) = intersect_sphere(ray, sphere, t_max) {
@@ -216,16 +221,7 @@ impl Accel {
                 });
             }
         }
-        for (i, sphere) in self.spheres.iter().enumerate() {
-            if let Some(t) = intersect_sphere(ray, sphere, t_max) {
-                t_max = t;
-                hit = Some(Hit::Sphere {
-                    t,
-                    sphere: i as u32,
-                });
-            }
-        }
-        hit
+        self.nearer_sphere(ray, hit)
     }
 }
 

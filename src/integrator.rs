@@ -33,18 +33,21 @@ use crate::geometry::Ray;
 use crate::lights::LightTable;
 use crate::sampling::{SampleStream, dim, power_heuristic};
 use crate::scene::Scene;
-use crate::settings::{RenderSettings, Term};
+use crate::settings::{RenderSettings, Term, TermSet};
 use crate::shading::SurfacePoint;
 
 /// Radiance of one sample, per term.
 pub type TermRadiance = [Vec3; Term::COUNT];
 
-/// Rays traced, by kind.
+/// Rays traced, by kind and by the lowest selected term each serves: the
+/// shadow ray at the k-th reflection serves L_k; a ray leaving the camera
+/// (k = 0) or the k-th reflection serves L_k and every later term.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RayCounts {
     pub camera: u64,
     pub shadow: u64,
     pub bounce: u64,
+    pub per_term: [u64; Term::COUNT],
 }
 
 impl RayCounts {
@@ -56,6 +59,9 @@ impl RayCounts {
         self.camera += other.camera;
         self.shadow += other.shadow;
         self.bounce += other.bounce;
+        for (mine, theirs) in self.per_term.iter_mut().zip(other.per_term) {
+            *mine += theirs;
+        }
     }
 }
 
@@ -118,6 +124,7 @@ impl RenderContext {
         // the previous vertex, for the MIS weight of emission hits
         let mut previous: Option<(Vec3, f32, bool)> = None; // (position, brdf pdf, delta)
         counts.camera += 1;
+        counts.per_term[lowest_selected(terms, 0)] += 1;
 
         while let Some(hit) = self.accel.closest_hit(&ray) {
             let term = Term::of_reflections(reflections).index();
@@ -186,6 +193,7 @@ impl RenderContext {
                     // a light behind the surface (or a zero BRDF) gets no shadow ray
                     if contribution.max_element() > 0.0 && light.wi.dot(ng) > 0.0 {
                         counts.shadow += 1;
+                        counts.per_term[next_term] += 1;
                         if !self.accel.occluded(&light.shadow_ray, light.target_sphere) {
                             let weight = if light.delta {
                                 1.0
@@ -228,9 +236,16 @@ impl RenderContext {
             }
             ray = point.spawn_ray(wi);
             counts.bounce += 1;
+            counts.per_term[lowest_selected(terms, reflections)] += 1;
         }
         radiance
     }
+}
+
+/// Index of the first selected term with `reflections` reflections or more.
+fn lowest_selected(terms: TermSet, reflections: u32) -> usize {
+    let from = Term::of_reflections(reflections);
+    terms.iter().find(|&t| t >= from).unwrap_or(from).index()
 }
 
 /// MIS weight of an emission hit reached by BRDF sampling with density `brdf_pdf`.

@@ -285,3 +285,30 @@ fn cli_render_reproduces_a_sidecar() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("shot.json"));
 }
+
+/// Rays are filed under the lowest selected term they serve: an L2-only
+/// render traces its camera and first-bounce rays for L2, and no shadow ray
+/// at the first hit.
+#[test]
+fn rays_are_counted_under_the_terms_they_serve() {
+    let count = |terms: TermSet| {
+        let context = lumiere::RenderContext::new(builtin::cornell(), small(16, 12, terms));
+        let mut film = lumiere::Film::new(16, 12);
+        lumiere::render::render(
+            &context,
+            &mut film,
+            lumiere::render::Budget::Samples(2),
+            |_| {},
+        )
+        .rays
+    };
+    let l0 = count(TermSet::only(Term::L0));
+    assert_eq!(l0.per_term, [l0.camera, 0, 0, 0]);
+    assert_eq!((l0.shadow, l0.bounce), (0, 0), "L0 needs camera rays only");
+    let l2 = count(TermSet::only(Term::L2));
+    assert_eq!(l2.per_term[0] + l2.per_term[1] + l2.per_term[3], 0);
+    assert_eq!(l2.per_term[2], l2.total());
+    let all = count(TermSet::ALL);
+    assert_eq!(all.per_term.iter().sum::<u64>(), all.total());
+    assert!(all.per_term.iter().all(|&n| n > 0));
+}

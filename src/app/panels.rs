@@ -96,11 +96,14 @@ pub fn status_bar(app: &LumiereApp, ui: &mut egui::Ui, snapshot: &Snapshot) {
             ui.label(format!("{:.1} Mrays/s", snapshot.mrays_per_second()));
             ui.separator();
             let rays = snapshot.rays;
-            ui.label(format!(
-                "rays: {} camera, {} shadow, {} bounce",
+            let per_term: Vec<String> = Term::ALL
+                .iter()
+                .map(|t| format!("{} {}", t.label(), rays.per_term[t.index()]))
+                .collect();
+            ui.label(format!("rays: {}", per_term.join(", "))).on_hover_text(format!(
+                "Rays traced since the last restart, filed under the lowest term each serves.\nBy kind: {} camera, {} shadow, {} bounce",
                 rays.camera, rays.shadow, rays.bounce
-            ))
-            .on_hover_text("Rays traced since the last restart, by kind");
+            ));
             ui.separator();
             ui.label(state);
             if let Some(message) = &app.message {
