@@ -207,3 +207,33 @@ fn pixel_zoom_shows_each_film_pixel_as_a_square() {
     harness.run_steps(3);
     assert!(harness.state().image_rect().unwrap().width() > 64.0 * 4.0 / ppp);
 }
+
+#[test]
+fn a_broken_scene_file_shows_its_error_and_the_scene_stays() {
+    let mut harness = harness();
+    let broken = std::env::temp_dir().join(format!("lumiere-broken-{}.gltf", std::process::id()));
+    std::fs::write(&broken, b"{ not json").unwrap();
+    harness.get_by_label("Scene").click();
+    harness.run_steps(2);
+    let field = harness.get_by_label("file");
+    field.focus();
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    harness.run_steps(1);
+    harness
+        .get_by_label("file")
+        .type_text(&format!("{}", broken.display()));
+    harness.run_steps(2);
+    harness.get_by_label("Load").click();
+    harness.run_steps(2);
+    let app = harness.state();
+    let message = app.message.clone().unwrap_or_default();
+    assert!(
+        message.starts_with("error:") && message.contains("lumiere-broken"),
+        "{message}"
+    );
+    assert!(
+        !message.contains("cannot read"),
+        "the typed path replaced the field's text: {message}"
+    );
+    assert_eq!(app.scene.name, "cornell", "the previous scene stays");
+}
