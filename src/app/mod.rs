@@ -105,6 +105,8 @@ pub struct LumiereApp {
     /// A BVH over every triangle of the scene it was built for, to pick objects.
     picking: Option<(Arc<Scene>, crate::accel::Accel)>,
     bench: Option<bench::Bench>,
+    /// Save the settings for the next run (only the plain `lumiere` viewer does).
+    persist: bool,
     /// Screen pixels per film pixel; `None` fits the image to the window.
     pub zoom: Option<u32>,
     /// Offset of the zoomed image from the centre, in points.
@@ -161,6 +163,7 @@ impl LumiereApp {
             selected: None,
             picking: None,
             bench: options.bench.then(bench::Bench::default),
+            persist: options.restore,
             zoom: None,
             pan: egui::Vec2::ZERO,
             exports: Vec::new(),
@@ -377,7 +380,10 @@ impl eframe::App for LumiereApp {
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
-        eframe::set_value(storage, STORAGE_KEY, &self.state);
+        // scripted and command-line runs must not overwrite the user's settings
+        if self.persist {
+            eframe::set_value(storage, STORAGE_KEY, &self.state);
+        }
     }
 }
 
