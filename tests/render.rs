@@ -292,15 +292,9 @@ fn cli_render_reproduces_a_sidecar() {
 #[test]
 fn rays_are_counted_under_the_terms_they_serve() {
     let count = |terms: TermSet| {
-        let context = lumiere::RenderContext::new(builtin::cornell(), small(16, 12, terms));
-        let mut film = lumiere::Film::new(16, 12);
-        lumiere::render::render(
-            &context,
-            &mut film,
-            lumiere::render::Budget::Samples(2),
-            |_| {},
-        )
-        .rays
+        common::render_with_stats(builtin::cornell(), &small(16, 12, terms), 2)
+            .1
+            .rays
     };
     let l0 = count(TermSet::only(Term::L0));
     assert_eq!(l0.per_term, [l0.camera, 0, 0, 0]);

@@ -3,15 +3,20 @@
 
 use std::path::{Path, PathBuf};
 
-use lumiere::render::{Budget, render};
+use lumiere::render::{Budget, RenderStats, render};
 use lumiere::{Film, RenderContext, RenderSettings, Scene, Term, TermSet};
 
 /// Renders `scene` with `settings` at `spp` samples per pixel.
 pub fn render_film(scene: Scene, settings: &RenderSettings, spp: u32) -> Film {
+    render_with_stats(scene, settings, spp).0
+}
+
+/// [`render_film`], with what the render did.
+pub fn render_with_stats(scene: Scene, settings: &RenderSettings, spp: u32) -> (Film, RenderStats) {
     let context = RenderContext::new(scene, settings.clone());
     let mut film = Film::new(settings.width, settings.height);
-    render(&context, &mut film, Budget::Samples(spp), |_| {});
-    film
+    let stats = render(&context, &mut film, Budget::Samples(spp), |_| {});
+    (film, stats)
 }
 
 /// Settings of a small image with only `terms`.
