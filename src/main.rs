@@ -17,7 +17,10 @@ use lumiere::export::{ImageFormat, save_image};
 use lumiere::render::{Budget, RenderStats, render};
 use lumiere::scene::Camera;
 use lumiere::scene::builtin;
-use lumiere::settings::{DisplaySettings, Tonemap};
+use lumiere::settings::{
+    DisplaySettings, IndirectSampling, LightSampling, LightSelection, MAX_SAMPLES_PER_VERTEX,
+    MisHeuristic, Sampler, Tonemap,
+};
 use lumiere::sidecar::Sidecar;
 use lumiere::{BrdfOverride, Film, LightMode, RenderContext, RenderSettings, TermSet};
 
@@ -68,6 +71,27 @@ struct SceneOptions {
     max_bounces: u32,
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// Direct lighting from extended lights: area, solid-angle, brdf, hemisphere or mis (light + BRDF).
+    #[arg(long, default_value = "mis")]
+    light_sampling: LightSampling,
+    /// Weights of `--light-sampling mis`: balance or power.
+    #[arg(long, default_value = "power")]
+    mis_heuristic: MisHeuristic,
+    /// Directions of the next reflection (L2, L3+): uniform, cosine or brdf.
+    #[arg(long, default_value = "brdf")]
+    indirect_sampling: IndirectSampling,
+    /// Light samples (shadow rays or gathered directions) per vertex.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=MAX_SAMPLES_PER_VERTEX as i64))]
+    light_samples: u32,
+    /// Continuations per first hit (splitting), each weighted 1/M.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=MAX_SAMPLES_PER_VERTEX as i64))]
+    indirect_samples: u32,
+    /// How a light is picked: uniform or power.
+    #[arg(long, default_value = "power")]
+    light_selection: LightSelection,
+    /// Random numbers: independent, stratified (jittered) or sobol (Owen-scrambled).
+    #[arg(long, default_value = "independent")]
+    sampler: Sampler,
     /// Exposure in stops (PNG and display; the EXR stays linear).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_exposure)]
     exposure: f32,
@@ -171,6 +195,13 @@ impl SceneOptions {
             phong_exponent: self.phong_exponent,
             max_bounces: self.max_bounces,
             seed: self.seed,
+            light_sampling: self.light_sampling,
+            mis_heuristic: self.mis_heuristic,
+            indirect_sampling: self.indirect_sampling,
+            light_samples: self.light_samples,
+            indirect_samples: self.indirect_samples,
+            light_selection: self.light_selection,
+            sampler: self.sampler,
             ..RenderSettings::default()
         }
     }

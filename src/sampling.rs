@@ -24,18 +24,29 @@ use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
 /// Fixed dimensions of a sample: each use of a random number has its own.
+///
+/// Uses repeated within one sample (the j-th of N light samples, the m-th of
+/// M continuations) do not get new dimensions: they read the same dimensions
+/// of a sub-stream, [`SampleStream::split`], so a quasi-random sampler sees
+/// them as N (or M) consecutive points of the same low dimensions.
 pub mod dim {
     /// Position inside the pixel (2D).
     pub const PIXEL: u32 = 0;
     /// Dimensions used at path vertex `vertex` start at `vertex_base(vertex)`.
-    pub const PER_VERTEX: u32 = 8;
+    pub const PER_VERTEX: u32 = 10;
+    /// Which light a light sample picks.
     pub const LIGHT_SELECT: u32 = 0;
-    /// 2D.
+    /// Where on the light (2D).
     pub const LIGHT_POSITION: u32 = 1;
-    pub const BRDF_LOBE: u32 = 3;
-    /// 2D.
-    pub const BRDF_DIRECTION: u32 = 4;
-    pub const RUSSIAN_ROULETTE: u32 = 6;
+    /// Lobe of a direction gathered to find lights (BRDF or hemisphere strategy).
+    pub const GATHER_LOBE: u32 = 3;
+    /// Direction gathered to find lights (2D).
+    pub const GATHER_DIRECTION: u32 = 4;
+    /// Lobe of the next reflection.
+    pub const BRDF_LOBE: u32 = 6;
+    /// Direction of the next reflection (2D).
+    pub const BRDF_DIRECTION: u32 = 7;
+    pub const RUSSIAN_ROULETTE: u32 = 9;
 
     /// First dimension of path vertex `vertex` (0 = the first surface hit).
     pub const fn vertex_base(vertex: u32) -> u32 {
@@ -62,6 +73,17 @@ impl SampleStream {
         let key = mix64(mix64(seed ^ 0x5851_f42d_4c95_7f2d) ^ pixel);
         Self {
             key: mix64(key ^ sample.wrapping_mul(0x9e37_79b9_7f4a_7c15)),
+        }
+    }
+
+    /// The stream of repetition `index` of `count` within this sample (the
+    /// j-th light sample, the m-th continuation); repetition 0 of 1 is `self`.
+    pub fn split(&self, index: u32, count: u32) -> SampleStream {
+        if count <= 1 {
+            return *self;
+        }
+        Self {
+            key: mix64(self.key ^ mix64((index as u64) << 32 | count as u64)),
         }
     }
 

@@ -213,6 +213,137 @@ impl BrdfOverride {
     }
 }
 
+/// How direct lighting from extended lights is estimated at each vertex.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum LightSampling {
+    /// Uniform points on the light's surface (pdf 1/A, converted to solid angle).
+    Area,
+    /// Uniform directions in the solid angle a triangle subtends (Arvo's
+    /// spherical triangle sampling); area sampling for tiny or huge angles.
+    SolidAngle,
+    /// Sample the BRDF and count the directions that hit a light.
+    Brdf,
+    /// Uniform directions on the hemisphere that happen to see a light.
+    Hemisphere,
+    /// Light (area) and BRDF sampling combined by multiple importance sampling.
+    #[default]
+    Mis,
+}
+
+impl LightSampling {
+    pub const ALL: [LightSampling; 5] = [
+        LightSampling::Area,
+        LightSampling::SolidAngle,
+        LightSampling::Brdf,
+        LightSampling::Hemisphere,
+        LightSampling::Mis,
+    ];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            LightSampling::Area => "area",
+            LightSampling::SolidAngle => "solid-angle",
+            LightSampling::Brdf => "brdf",
+            LightSampling::Hemisphere => "hemisphere",
+            LightSampling::Mis => "mis",
+        }
+    }
+}
+
+/// The weighting of the two strategies of `LightSampling::Mis`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum MisHeuristic {
+    /// w = p_a / (p_a + p_b).
+    Balance,
+    /// w = p_a² / (p_a² + p_b²).
+    #[default]
+    Power,
+}
+
+impl MisHeuristic {
+    pub const ALL: [MisHeuristic; 2] = [MisHeuristic::Balance, MisHeuristic::Power];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            MisHeuristic::Balance => "balance",
+            MisHeuristic::Power => "power",
+        }
+    }
+}
+
+/// How the direction of the next reflection (L2, L3+) is drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum IndirectSampling {
+    /// pdf 1/2π.
+    Uniform,
+    /// pdf cos θ/π.
+    Cosine,
+    /// The BRDF's own sampling routine (pdf ∝ f cos θ where it can).
+    #[default]
+    Brdf,
+}
+
+impl IndirectSampling {
+    pub const ALL: [IndirectSampling; 3] = [
+        IndirectSampling::Uniform,
+        IndirectSampling::Cosine,
+        IndirectSampling::Brdf,
+    ];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            IndirectSampling::Uniform => "uniform",
+            IndirectSampling::Cosine => "cosine",
+            IndirectSampling::Brdf => "brdf",
+        }
+    }
+}
+
+/// How a light is picked for a light sample.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum LightSelection {
+    /// Every light with the same probability.
+    Uniform,
+    /// In proportion to emitted power.
+    #[default]
+    Power,
+}
+
+impl LightSelection {
+    pub const ALL: [LightSelection; 2] = [LightSelection::Uniform, LightSelection::Power];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            LightSelection::Uniform => "uniform",
+            LightSelection::Power => "power",
+        }
+    }
+}
+
+/// Where the random numbers of a sample come from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Sampler {
+    /// Independent uniform numbers (plain Monte Carlo).
+    #[default]
+    Independent,
+    /// Jittered strata: each dimension pair of a block of samples covers a grid.
+    Stratified,
+    /// Owen-scrambled Sobol points (quasi-Monte Carlo), scrambled per pixel.
+    Sobol,
+}
+
+impl Sampler {
+    pub const ALL: [Sampler; 3] = [Sampler::Independent, Sampler::Stratified, Sampler::Sobol];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Sampler::Independent => "independent",
+            Sampler::Stratified => "stratified",
+            Sampler::Sobol => "sobol",
+        }
+    }
+}
+
 /// The curve that maps exposed radiance to display values (display and PNG only).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Tonemap {
@@ -285,6 +416,11 @@ macro_rules! label_from_str {
 label_from_str!(LightMode);
 label_from_str!(BrdfOverride);
 label_from_str!(Tonemap);
+label_from_str!(LightSampling);
+label_from_str!(MisHeuristic);
+label_from_str!(IndirectSampling);
+label_from_str!(LightSelection);
+label_from_str!(Sampler);
 
 /// Everything that decides the radiance a render estimates (not how long it runs).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -304,7 +440,21 @@ pub struct RenderSettings {
     /// Most reflections a path may have (caps L3+).
     pub max_bounces: u32,
     pub seed: u64,
+    /// Estimator of direct lighting from extended lights.
+    pub light_sampling: LightSampling,
+    pub mis_heuristic: MisHeuristic,
+    /// How the direction of the next reflection is drawn.
+    pub indirect_sampling: IndirectSampling,
+    /// Light samples (shadow rays, or gathered directions) per vertex.
+    pub light_samples: u32,
+    /// Continuations per first hit (splitting), each weighted 1/M.
+    pub indirect_samples: u32,
+    pub light_selection: LightSelection,
+    pub sampler: Sampler,
 }
+
+/// Most light or indirect samples per vertex a render accepts.
+pub const MAX_SAMPLES_PER_VERTEX: u32 = 256;
 
 impl Default for RenderSettings {
     fn default() -> Self {
@@ -319,6 +469,13 @@ impl Default for RenderSettings {
             phong_specular: 0.25,
             max_bounces: 64,
             seed: 0,
+            light_sampling: LightSampling::default(),
+            mis_heuristic: MisHeuristic::default(),
+            indirect_sampling: IndirectSampling::default(),
+            light_samples: 1,
+            indirect_samples: 1,
+            light_selection: LightSelection::default(),
+            sampler: Sampler::default(),
         }
     }
 }
@@ -357,6 +514,16 @@ impl RenderSettings {
         if self.max_bounces == 0 {
             return Err("max bounces must be at least 1".into());
         }
+        for (name, count) in [
+            ("light samples", self.light_samples),
+            ("indirect samples", self.indirect_samples),
+        ] {
+            if !(1..=MAX_SAMPLES_PER_VERTEX).contains(&count) {
+                return Err(format!(
+                    "{name} {count} must be within 1..={MAX_SAMPLES_PER_VERTEX}"
+                ));
+            }
+        }
         Ok(())
     }
 }
@@ -388,5 +555,18 @@ mod tests {
             assert_eq!(b.label().parse::<BrdfOverride>().unwrap(), b);
         }
         assert!("points".parse::<LightMode>().is_err());
+        for s in LightSampling::ALL {
+            assert_eq!(s.label().parse::<LightSampling>().unwrap(), s);
+        }
+        for s in IndirectSampling::ALL {
+            assert_eq!(s.label().parse::<IndirectSampling>().unwrap(), s);
+        }
+        for s in Sampler::ALL {
+            assert_eq!(s.label().parse::<Sampler>().unwrap(), s);
+        }
+        assert_eq!(
+            "Solid-Angle".parse::<LightSampling>(),
+            Ok(LightSampling::SolidAngle)
+        );
     }
 }
