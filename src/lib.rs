@@ -34,6 +34,7 @@ pub mod film;
 pub mod geometry;
 pub mod integrator;
 pub mod lights;
+pub mod metrics;
 pub mod progressive;
 pub mod render;
 pub mod sampling;
