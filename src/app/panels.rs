@@ -6,7 +6,10 @@ use eframe::egui;
 
 use super::{LumiereApp, display, interact};
 use crate::progressive::Snapshot;
-use crate::settings::{BrdfOverride, LightMode, Term, Tonemap};
+use crate::settings::{
+    BrdfOverride, IndirectSampling, LightMode, LightSampling, LightSelection,
+    MAX_SAMPLES_PER_VERTEX, MisHeuristic, Sampler, Term, Tonemap,
+};
 
 /// French name and formula of each term, shown on hover (from the course).
 fn term_tooltip(term: Term) -> &'static str {
@@ -122,6 +125,7 @@ pub fn side_panel(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 terms_ui(app, ui);
                 lights_ui(app, ui);
                 materials_ui(app, ui);
+                sampling_ui(app, ui);
                 interact::selection_ui(app, ui);
                 camera_ui(app, ui);
                 display_ui(app, ui);
@@ -206,6 +210,125 @@ fn materials_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                     .text("Phong exponent"),
             );
         });
+}
+
+/// The estimators: how direct lighting, the next reflection and the random
+/// numbers are drawn. Every choice is unbiased; only the noise differs.
+fn sampling_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+    egui::CollapsingHeader::new("Sampling")
+        .default_open(true)
+        .show(ui, |ui| {
+            let settings = &mut app.state.settings;
+            combo(
+                ui,
+                "direct (L1)",
+                &mut settings.light_sampling,
+                &LightSampling::ALL,
+                light_sampling_hint,
+            );
+            ui.add_enabled_ui(settings.light_sampling == LightSampling::Mis, |ui| {
+                ui.horizontal(|ui| {
+                    ui.label("MIS weights");
+                    for heuristic in MisHeuristic::ALL {
+                        ui.radio_value(&mut settings.mis_heuristic, heuristic, heuristic.label())
+                            .on_hover_text(match heuristic {
+                                MisHeuristic::Balance => "w = p_light / (p_light + p_brdf)",
+                                MisHeuristic::Power => "w = p_light² / (p_light² + p_brdf²)",
+                            });
+                    }
+                });
+            });
+            combo(
+                ui,
+                "indirect (L2, L3+)",
+                &mut settings.indirect_sampling,
+                &IndirectSampling::ALL,
+                indirect_sampling_hint,
+            );
+            ui.horizontal(|ui| {
+                ui.add(
+                    egui::DragValue::new(&mut settings.light_samples)
+                        .range(1..=MAX_SAMPLES_PER_VERTEX)
+                        .prefix("light samples "),
+                )
+                .on_hover_text("Light samples per vertex (shadow rays, or gathered directions), each weighted 1/N");
+                ui.add(
+                    egui::DragValue::new(&mut settings.indirect_samples)
+                        .range(1..=MAX_SAMPLES_PER_VERTEX)
+                        .prefix("indirect samples "),
+                )
+                .on_hover_text("Continuations per first hit (splitting), each weighted 1/M");
+            });
+            ui.horizontal(|ui| {
+                ui.label("pick lights");
+                for selection in LightSelection::ALL {
+                    ui.radio_value(&mut settings.light_selection, selection, selection.label())
+                        .on_hover_text(match selection {
+                            LightSelection::Uniform => "Every light with the same probability",
+                            LightSelection::Power => "In proportion to emitted power",
+                        });
+                }
+            });
+            combo(ui, "sampler", &mut settings.sampler, &Sampler::ALL, sampler_hint);
+        });
+}
+
+/// A combo box over a closed set, with a hint per value.
+fn combo<T: Copy + PartialEq + std::fmt::Display>(
+    ui: &mut egui::Ui,
+    label: &str,
+    value: &mut T,
+    all: &[T],
+    hint: fn(T) -> &'static str,
+) {
+    egui::ComboBox::from_label(label)
+        .selected_text(value.to_string())
+        .show_ui(ui, |ui| {
+            for &v in all {
+                ui.selectable_value(value, v, v.to_string())
+                    .on_hover_text(hint(v));
+            }
+        })
+        .response
+        .on_hover_text(hint(*value));
+}
+
+fn light_sampling_hint(strategy: LightSampling) -> &'static str {
+    match strategy {
+        LightSampling::Area => {
+            "Uniform points on the light: pdf = d² / (A cos θ_light) in solid angle.\nNoisy near large lights, where d² is small."
+        }
+        LightSampling::SolidAngle => {
+            "Uniform directions in the solid angle the light subtends (spherical triangles): pdf = 1/Ω.\nArea sampling for tiny or huge angles."
+        }
+        LightSampling::Brdf => {
+            "Sample the BRDF and count the directions that hit a light: pdf ∝ f cos θ.\nGood for glossy surfaces and large lights; blind to point lights."
+        }
+        LightSampling::Hemisphere => {
+            "Uniform directions on the hemisphere, pdf = 1/2π: only those that happen to see the source count.\nThe noisiest."
+        }
+        LightSampling::Mis => {
+            "Light and BRDF samples, each weighted by multiple importance sampling: robust everywhere."
+        }
+    }
+}
+
+fn indirect_sampling_hint(strategy: IndirectSampling) -> &'static str {
+    match strategy {
+        IndirectSampling::Uniform => "pdf = 1/2π over the hemisphere",
+        IndirectSampling::Cosine => "pdf = cos θ / π: exact for Lambert's f cos θ",
+        IndirectSampling::Brdf => {
+            "The BRDF's own sampling (cosine for Lambert, the lobe for Phong, the mirror direction)"
+        }
+    }
+}
+
+fn sampler_hint(sampler: Sampler) -> &'static str {
+    match sampler {
+        Sampler::Independent => "Independent uniform numbers: error falls as 1/√N",
+        Sampler::Stratified => "Jittered strata over blocks of 16 samples",
+        Sampler::Sobol => "Owen-scrambled Sobol points: lower error for smooth integrands",
+    }
 }
 
 fn brdf_text(brdf: BrdfOverride) -> &'static str {
