@@ -42,6 +42,7 @@ pub mod scene;
 pub mod settings;
 pub mod shading;
 pub mod sidecar;
+pub mod strip;
 
 pub use error::SceneError;
 pub use film::Film;

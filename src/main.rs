@@ -22,6 +22,7 @@ use lumiere::settings::{
     MisHeuristic, Sampler, Tonemap,
 };
 use lumiere::sidecar::Sidecar;
+use lumiere::strip::{RowSweep, SampleCounts, StripImage, StripLayout, StripRow, render_strip};
 use lumiere::{BrdfOverride, Film, LightMode, RenderContext, RenderSettings, TermSet};
 
 #[derive(Parser)]
@@ -42,9 +43,11 @@ enum Command {
     Render(RenderArgs),
     /// Open the interactive viewer.
     View(ViewArgs),
+    /// One progressive render shown at several sample counts, side by side and labelled (PNG).
+    Strip(StripArgs),
 }
 
-/// What decides the radiance and its display: shared by `render` and `view`.
+/// What decides the radiance and its display: shared by `render`, `view` and `strip`.
 #[derive(Args, Clone)]
 struct SceneOptions {
     #[arg(long, default_value_t = 640, value_parser = clap::value_parser!(u32).range(1..=16384))]
@@ -119,6 +122,34 @@ struct RenderArgs {
     /// A screenshot's JSON sidecar: its scene, camera, settings and spp replace the options above.
     #[arg(long)]
     settings: Option<PathBuf>,
+    #[command(flatten)]
+    options: SceneOptions,
+}
+
+#[derive(Args)]
+struct StripArgs {
+    /// A .gltf/.glb file, or `cornell` (the built-in Cornell box, the default).
+    #[arg(default_value = "cornell")]
+    scene: String,
+    /// Output image: a .png (labels are display pixels; no EXR).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Samples per pixel of the tiles, increasing: one render, snapshotted at each count.
+    #[arg(long, default_value = "1,4,16,64,256")]
+    spp: SampleCounts,
+    /// One row per value of an option, e.g. light-sampling=area,solid-angle,mis
+    /// (terms are joined by '+': terms=L1,L2,L1+L2).
+    #[arg(long)]
+    rows: Option<RowSweep>,
+    /// Width of each tile (the same as --width).
+    #[arg(long, conflicts_with = "width", value_parser = clap::value_parser!(u32).range(1..=16384))]
+    tile_width: Option<u32>,
+    /// Height of each tile (the same as --height).
+    #[arg(long, conflicts_with = "height", value_parser = clap::value_parser!(u32).range(1..=16384))]
+    tile_height: Option<u32>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    threads: Option<u32>,
     #[command(flatten)]
     options: SceneOptions,
 }
@@ -233,6 +264,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Some(Command::Render(args)) => run_render(&args),
         Some(Command::View(args)) => run_view(args, false),
+        Some(Command::Strip(args)) => run_strip(&args),
         None => run_view(ViewArgs::parse_from(["view"]), true),
     };
     match result {
@@ -323,6 +355,68 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
     Ok(())
 }
 
+fn run_strip(args: &StripArgs) -> Result<(), Failure> {
+    if ImageFormat::from_path(&args.output) != Some(ImageFormat::Png) {
+        return Err(usage(anyhow::anyhow!(
+            "{}: a strip is written as PNG only (its labels are display pixels); the output must end in .png",
+            args.output.display()
+        )));
+    }
+    let mut base = args.options.settings();
+    base.width = args.tile_width.unwrap_or(base.width);
+    base.height = args.tile_height.unwrap_or(base.height);
+    let rows = match &args.rows {
+        Some(sweep) => sweep.rows(&base),
+        None => vec![StripRow {
+            label: None,
+            settings: base.clone(),
+        }],
+    };
+    for row in &rows {
+        row.settings
+            .validate()
+            .map_err(|e| usage(anyhow::anyhow!(e)))?;
+    }
+    check_memory(base.width, base.height).map_err(usage)?;
+    let row_labels = rows.iter().filter_map(|r| r.label.clone()).collect();
+    let layout = StripLayout::new(base.width, base.height, args.spp.labels(), row_labels);
+    layout.check_size().map_err(|e| usage(anyhow::anyhow!(e)))?;
+    let scene = builtin::load(&args.scene).map_err(|e| runtime(e.into()))?;
+    for warning in &scene.warnings {
+        eprintln!("warning: {}: {warning}", args.scene);
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.unwrap_or(0) as usize)
+        .build()
+        .context("cannot start the worker threads")
+        .map_err(runtime)?;
+    let mut image = StripImage::new(layout);
+    let bar = strip_progress_bar(args.spp.max() as u64 * rows.len() as u64);
+    let row_name = |r: usize| match (&args.rows, &rows[r].label) {
+        (Some(sweep), Some(label)) => format!("{}={label}: ", sweep.option),
+        _ => String::new(),
+    };
+    pool.install(|| {
+        render_strip(
+            scene.into(),
+            &rows,
+            &args.spp,
+            args.options.display(),
+            &mut image,
+            |r, stats| {
+                bar.set_position(r as u64 * args.spp.max() as u64 + stats.samples_per_pixel as u64);
+                bar.set_message(row_name(r));
+            },
+            |r, stats| bar.suspend(|| println!("{}{}", row_name(r), summary(stats))),
+        )
+    });
+    bar.finish_and_clear();
+    image
+        .save_png(&args.output)
+        .map_err(|e| runtime(e.into()))?;
+    Ok(())
+}
+
 #[cfg(feature = "gui")]
 fn run_view(args: ViewArgs, restore: bool) -> Result<(), Failure> {
     let settings = args.options.settings();
@@ -374,6 +468,19 @@ fn progress_bar(budget: Budget) -> ProgressBar {
     let bar = ProgressBar::new(length);
     bar.set_style(
         ProgressStyle::with_template(template).unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar
+}
+
+/// A bar over all the passes of a strip (rows × the largest count), if stderr is a terminal.
+fn strip_progress_bar(passes: u64) -> ProgressBar {
+    if !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(passes);
+    bar.set_style(
+        ProgressStyle::with_template("{msg}{bar:40} {pos}/{len} passes  {elapsed}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     bar
 }

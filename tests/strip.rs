@@ -1,0 +1,274 @@
+//! `lumiere strip`: its size, tiles equal to renders of the same sample
+//! counts, convergence along a row, rows of one option, and refused arguments.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use glam::Vec3;
+use image::RgbImage;
+use lumiere::color::srgb_to_linear;
+use lumiere::export::to_srgb8;
+use lumiere::metrics::image_error;
+use lumiere::scene::builtin;
+use lumiere::strip::StripLayout;
+use lumiere::{Term, TermSet};
+
+fn lumiere() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_lumiere"))
+}
+
+fn temp_path(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("lumiere-strip-tests-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn run(args: &[&str], output: &Path) -> Output {
+    let out = lumiere()
+        .arg("strip")
+        .arg("-o")
+        .arg(output)
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "strip {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
+fn render_png(args: &[&str], output: &Path) -> RgbImage {
+    let out = lumiere()
+        .arg("render")
+        .arg("-o")
+        .arg(output)
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    image::open(output).unwrap().to_rgb8()
+}
+
+/// The tile at (`x0`, `y0`) of `strip`, `width` × `height`.
+fn crop(strip: &RgbImage, x0: u32, y0: u32, width: u32, height: u32) -> RgbImage {
+    image::imageops::crop_imm(strip, x0, y0, width, height).to_image()
+}
+
+/// Largest difference of one channel between two images of one size.
+fn worst_difference(a: &RgbImage, b: &RgbImage) -> u8 {
+    assert_eq!(a.dimensions(), b.dimensions());
+    a.as_raw()
+        .iter()
+        .zip(b.as_raw())
+        .map(|(x, y)| x.abs_diff(*y))
+        .max()
+        .unwrap()
+}
+
+fn labels(texts: &[&str]) -> Vec<String> {
+    texts.iter().map(|s| s.to_string()).collect()
+}
+
+/// The strip is n tiles wide and one tile plus its band high; each tile is
+/// the PNG `lumiere render` writes at that sample count with the same
+/// options (same seed, same passes), exposure included.
+#[test]
+fn tiles_are_the_renders_of_their_sample_counts() {
+    let (width, height) = (40, 30);
+    let options = [
+        "--terms",
+        "L1",
+        "--width",
+        "40",
+        "--height",
+        "30",
+        "--seed",
+        "2",
+        "--exposure",
+        "1",
+    ];
+    let strip_path = temp_path("tiles.png");
+    let mut args = vec!["cornell", "--spp", "1,3,8"];
+    args.extend(options);
+    let out = run(&args, &strip_path);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.starts_with("8 spp") && stdout.contains("rays") && stdout.lines().count() == 1,
+        "summary: {stdout}"
+    );
+
+    let strip = image::open(&strip_path).unwrap().to_rgb8();
+    let layout = StripLayout::new(width, height, labels(&["1 spp", "3 spp", "8 spp"]), vec![]);
+    // "8 spp" fits 40 px at 2× only: bands of 14·2 px
+    assert_eq!(layout.band_height(), 28);
+    assert_eq!(strip.dimensions(), (3 * width, height + 28));
+
+    let mut tiles = Vec::new();
+    for (column, spp) in ["1", "3", "8"].into_iter().enumerate() {
+        let mut args = vec!["--spp", spp];
+        args.extend(options);
+        let rendered = render_png(&args, &temp_path(&format!("render-{spp}.png")));
+        let (x0, y0) = layout.tile_origin(0, column as u32);
+        let tile = crop(&strip, x0, y0, width, height);
+        let worst = worst_difference(&tile, &rendered);
+        assert!(
+            worst <= 1,
+            "the {spp} spp tile differs from the render by {worst}/255"
+        );
+        tiles.push(tile);
+    }
+    assert!(
+        worst_difference(&tiles[0], &tiles[1]) > 10,
+        "the tiles should differ"
+    );
+    // the band below the tiles is dark, with light label pixels
+    let band = crop(&strip, 0, height, width, 28);
+    assert!(band.pixels().any(|p| p.0[0] > 200) && band.pixels().any(|p| p.0[0] < 40));
+}
+
+/// Along a row the image converges: the last tile is closer to a converged
+/// render than the first (errors measured after the same display mapping).
+#[test]
+fn the_last_tile_is_closer_to_the_reference_than_the_first() {
+    let (width, height) = (32, 24);
+    let strip_path = temp_path("converge.png");
+    run(
+        &[
+            "--terms", "L1", "--width", "32", "--height", "24", "--spp", "1,4,64", "--seed", "5",
+        ],
+        &strip_path,
+    );
+    let strip = image::open(&strip_path).unwrap().to_rgb8();
+    let layout = StripLayout::new(width, height, labels(&["1 spp", "4 spp", "64 spp"]), vec![]);
+
+    let mut settings = common::small(width, height, TermSet::only(Term::L1));
+    settings.seed = 1000;
+    let reference =
+        common::render_film(builtin::cornell(), &settings, 1024).radiance(settings.terms);
+    let display = Default::default();
+    let to_linear = |srgb: &[u8]| -> Vec<Vec3> {
+        srgb.chunks_exact(3)
+            .map(|c| Vec3::from_array([0, 1, 2].map(|i| srgb_to_linear(c[i] as f32 / 255.0))))
+            .collect()
+    };
+    let reference = to_linear(&to_srgb8(&reference, display));
+    let rmse = |column: u32| {
+        let (x0, y0) = layout.tile_origin(0, column);
+        let tile = crop(&strip, x0, y0, width, height);
+        image_error(&to_linear(tile.as_raw()), &reference)
+            .unwrap()
+            .rmse
+    };
+    let (first, middle, last) = (rmse(0), rmse(1), rmse(2));
+    // independent noise: RMSE ∝ 1/√N, so 1 → 64 spp divides it by about 8
+    assert!(
+        last < 0.35 * first && middle < first,
+        "RMSE 1 spp {first:.4}, 4 spp {middle:.4}, 64 spp {last:.4}"
+    );
+}
+
+/// `--rows` adds one labelled row per value; each row is the render with
+/// that value, and prints its own summary line.
+#[test]
+fn rows_sweep_one_option() {
+    let (width, height) = (24, 16);
+    let strip_path = temp_path("rows.png");
+    let options = ["--terms", "L1", "--seed", "3"];
+    let mut args = vec![
+        "--spp",
+        "1,4",
+        "--tile-width",
+        "24",
+        "--tile-height",
+        "16",
+        "--rows",
+        "lights=authored,point",
+    ];
+    args.extend(options);
+    let out = run(&args, &strip_path);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines.len(), 2, "{stdout}");
+    assert!(lines[0].starts_with("lights=authored: 4 spp"), "{stdout}");
+    assert!(lines[1].starts_with("lights=point: 4 spp"), "{stdout}");
+
+    let strip = image::open(&strip_path).unwrap().to_rgb8();
+    let layout = StripLayout::new(
+        width,
+        height,
+        labels(&["1 spp", "4 spp"]),
+        labels(&["authored", "point"]),
+    );
+    let left = layout.label_column_width();
+    assert!(left > 0);
+    assert_eq!(
+        strip.dimensions(),
+        (left + 2 * width, 2 * (height + layout.band_height()))
+    );
+    let (x0, y0) = layout.tile_origin(1, 1);
+    let tile = crop(&strip, x0, y0, width, height);
+    let mut args = vec![
+        "--spp", "4", "--width", "24", "--height", "16", "--lights", "point",
+    ];
+    args.extend(options);
+    let rendered = render_png(&args, &temp_path("rows-point.png"));
+    assert!(worst_difference(&tile, &rendered) <= 1);
+    let (x0, y0) = layout.tile_origin(0, 1);
+    let authored = crop(&strip, x0, y0, width, height);
+    assert!(
+        worst_difference(&tile, &authored) > 10,
+        "the rows should differ"
+    );
+    // the row labels are drawn in the left column
+    let column = crop(&strip, 0, 0, left, height);
+    assert!(column.pixels().any(|p| p.0[0] > 200));
+}
+
+#[test]
+fn bad_arguments_exit_with_code_2_and_say_why() {
+    let png = temp_path("bad.png");
+    for (args, says) in [
+        (vec!["--spp", "0"], "at least 1"),
+        (vec!["--spp", "4,2"], "must increase"),
+        (vec!["--spp", "abc"], "'abc' is not a sample count"),
+        (vec!["--rows", "light-sampling"], "OPTION=V1,V2"),
+        (vec!["--rows", "colour=red"], "unknown option 'colour'"),
+        (
+            vec!["--rows", "sampler=sobol,halton"],
+            "unknown value 'halton'",
+        ),
+        (vec!["--rows", "indirect-samples=1,999"], "within 1..=256"),
+        (
+            vec!["--width", "8", "--tile-width", "8"],
+            "cannot be used with",
+        ),
+        (
+            vec!["--width", "9000", "--height", "10", "--spp", "1,2"],
+            "is 18000×",
+        ),
+    ] {
+        let result = lumiere()
+            .args(["strip", "-o"])
+            .arg(&png)
+            .args(&args)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert_eq!(result.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(says), "{args:?}: {stderr}");
+    }
+    let result = lumiere()
+        .args(["strip", "-o", "strip.exr"])
+        .output()
+        .unwrap();
+    assert_eq!(result.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&result.stderr).contains("PNG only"));
+}
