@@ -1,68 +1,160 @@
-//! The path tracer: one loop that files every contribution under its term.
+//! The path tracer: one walk per sample that files every contribution under its term.
 //!
 //! A path leaves the camera; after k reflections it carries the throughput
-//! β = Π f cos / pdf. Light reaches the camera along it in two ways, each
-//! filed under the term of its number of reflections (`Term::of_reflections`):
+//! β = Π f cos / pdf of the directions that continued it. Light reaches the
+//! camera along it in three ways, each filed under the term of its number of
+//! reflections (`Term::of_reflections`):
 //!
-//! * **emission hit** — the path's (k)th segment lands on an emitter:
-//!   β · L_e · w_brdf, filed under L_k (k = 0 is L0, the emitter seen directly);
-//! * **next-event estimation** — at the vertex of the (k+1)th reflection a
-//!   light is sampled: β · f · L_i · cos θ / pdf_light · w_light, under L_{k+1}.
+//! * **emission hit** — the path's k-th segment lands on an emitter:
+//!   β · L_e · w, filed under L_k (k = 0 is L0, the emitter seen directly, w = 1);
+//! * **light sample** — at the vertex of the (k+1)-th reflection a light is
+//!   drawn: β · f · L_i · cos θ / pdf_light · w_light, under L_{k+1};
+//! * **gathered direction** — at that vertex a direction is drawn (by the
+//!   BRDF, or uniformly on the hemisphere) and traced: if it lands on an
+//!   emitter, β · f · L_e · cos θ / pdf_gather · w_gather, under L_{k+1}.
 //!
-//! Both estimate the same integral; w_brdf and w_light are the power-heuristic
-//! MIS weights (they sum to one), so emission is counted once. A Dirac BRDF
-//! (mirror) cannot sample a light: its emission hits keep weight 1. A Dirac
-//! light (point, spot, directional) cannot be hit: its light samples keep
-//! weight 1.
+//! ## Direct lighting at a vertex (`RenderSettings::light_sampling`)
 //!
-//! Work the selected terms do not need is skipped: no light sample at a
-//! vertex whose term is off (`--terms L2` traces no shadow ray at the first
-//! hit), no vertex beyond the last term needed (`--terms L0` traces camera
-//! rays only), no continuation ray whose only use would be to hit an emitter
-//! when the scene has no area light, and no shadow ray for a light behind the
-//! surface. Russian roulette starts after the third reflection (it only
-//! touches L3+), and `max_bounces` caps the reflections.
+//! For an extended light (triangle or sphere) the weights of the two sample
+//! kinds sum to one, so each light is counted once:
+//!
+//! | strategy | w_light | w_gather |
+//! |---|---|---|
+//! | `area`, `solid-angle` | 1 | 0 (no direction is gathered) |
+//! | `brdf`, `hemisphere` | 0 (no shadow ray) | 1 |
+//! | `mis` | h(pdf_light, pdf_brdf) | h(pdf_brdf, pdf_light) |
+//!
+//! with h the balance heuristic p_a / (p_a + p_b) or the power heuristic
+//! p_a² / (p_a² + p_b²) (`mis_heuristic`); pdf_light is the density with which
+//! light sampling picks that point (selection included), pdf_brdf the BRDF's.
+//! A Dirac light (point, spot, directional) cannot be hit: its light samples
+//! keep w_light = 1 under every strategy. A Dirac BRDF (mirror) cannot sample
+//! a light: no light sample, and the emission hit of its continuation keeps
+//! w = 1. With `light_samples` = N, the vertex draws N light samples and/or N
+//! gathered directions, each weighted 1/N, the j-th from `stream.split(j, N)`.
+//!
+//! **Reuse.** When N = 1, the vertex has one continuation and the
+//! continuation is drawn from the gathering distribution (`brdf`/`mis` with
+//! `indirect_sampling brdf`, `hemisphere` with `indirect_sampling uniform`),
+//! the continuation ray is the gathered direction: its emission hit gets
+//! w_gather. Otherwise gathered directions are rays of their own and the
+//! continuation's emission hits get w = 0 (the light is estimated by the
+//! vertex's own samples), except after a mirror.
+//!
+//! ## The continuation (`indirect_sampling`, `indirect_samples`)
+//!
+//! The next direction is drawn uniformly on the hemisphere (pdf 1/2π), by
+//! cosine (cos θ/π) or by the BRDF's own routine (a mirror always uses its
+//! own); β *= f cos θ / pdf. At the first hit the path splits into M =
+//! `indirect_samples` continuations, each the rest of a full path driven by
+//! `stream.split(m, M)` with β / M. Russian roulette starts after the third
+//! reflection (it only touches L3+), and `max_bounces` caps the reflections.
+//!
+//! ## Work skipped
+//!
+//! Nothing is traced for a term that is off: no light sample or gathered
+//! direction at a vertex whose next term is off (`--terms L2` traces no shadow
+//! ray at the first hit), no vertex beyond the last term needed (`--terms L0`
+//! traces camera rays only), no continuation whose only use would be an
+//! emission hit of weight 0, no shadow ray for a light behind the surface.
 
 use std::sync::Arc;
 
 use glam::Vec3;
 
 use crate::accel::{Accel, Hit};
+use crate::brdf::{Brdf, BrdfSample};
 use crate::camera::CameraRays;
-use crate::geometry::Ray;
+use crate::geometry::{Frame, Ray};
 use crate::lights::LightTable;
-use crate::sampling::{SampleStream, dim, power_heuristic};
+use crate::sampling::{
+    SampleStream, UNIFORM_HEMISPHERE_PDF, balance_heuristic, cosine_hemisphere,
+    cosine_hemisphere_pdf, dim, power_heuristic, uniform_hemisphere,
+};
 use crate::scene::Scene;
-use crate::settings::{RenderSettings, Term, TermSet};
+use crate::settings::{
+    IndirectSampling, LightSampling, MisHeuristic, RenderSettings, Term, TermSet,
+};
 use crate::shading::SurfacePoint;
 
 /// Radiance of one sample, per term.
 pub type TermRadiance = [Vec3; Term::COUNT];
 
 /// Rays traced, by kind and by the lowest selected term each serves: the
-/// shadow ray at the k-th reflection serves L_k; a ray leaving the camera
-/// (k = 0) or the k-th reflection serves L_k and every later term.
+/// shadow ray or gathered direction at the k-th reflection serves L_k; a ray
+/// leaving the camera (k = 0) or the k-th reflection serves L_k and every
+/// later term.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RayCounts {
     pub camera: u64,
     pub shadow: u64,
     pub bounce: u64,
+    /// Directions traced only to find lights (not continuing the path).
+    pub gather: u64,
     pub per_term: [u64; Term::COUNT],
 }
 
 impl RayCounts {
     pub fn total(&self) -> u64 {
-        self.camera + self.shadow + self.bounce
+        self.camera + self.shadow + self.bounce + self.gather
     }
 
     pub fn add(&mut self, other: &RayCounts) {
         self.camera += other.camera;
         self.shadow += other.shadow;
         self.bounce += other.bounce;
+        self.gather += other.gather;
         for (mine, theirs) in self.per_term.iter_mut().zip(other.per_term) {
             *mine += theirs;
         }
     }
+}
+
+/// The segments of one traced sample, for drawing its path.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PathLog {
+    pub segments: Vec<PathSegment>,
+}
+
+impl PathLog {
+    /// The contributions of the segments, summed per term.
+    pub fn radiance(&self) -> TermRadiance {
+        let mut radiance = [Vec3::ZERO; Term::COUNT];
+        for segment in &self.segments {
+            radiance[segment.term.index()] += segment.radiance;
+        }
+        radiance
+    }
+}
+
+/// One ray of a traced sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PathSegment {
+    pub from: Vec3,
+    /// Where the ray stopped: its hit, the light point of a shadow ray, or one
+    /// scene diagonal away for a ray that left the scene.
+    pub to: Vec3,
+    pub kind: SegmentKind,
+    /// The term its contribution is filed under (the lowest it serves).
+    pub term: Term,
+    /// The radiance it added to `term` (zero if none).
+    pub radiance: Vec3,
+}
+
+/// What a traced ray was for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SegmentKind {
+    Camera,
+    /// A continuation of the path (next reflection).
+    Bounce,
+    /// Towards a light sample.
+    Shadow {
+        occluded: bool,
+    },
+    /// A direction traced only to find a light.
+    Gather {
+        hit_light: bool,
+    },
 }
 
 /// Everything a sample needs: the scene, its acceleration structure, its
@@ -101,158 +193,570 @@ impl RenderContext {
         counts: &mut RayCounts,
     ) -> TermRadiance {
         let ray = self.camera.generate(x, y, stream.uniform2(dim::PIXEL));
-        self.trace(ray, stream, counts)
+        Walk::new(self, counts, None).camera_path(ray, stream)
+    }
+
+    /// [`RenderContext::sample_pixel`] that also appends every ray it traces to `log`.
+    pub fn trace_recorded(
+        &self,
+        x: u32,
+        y: u32,
+        stream: &SampleStream,
+        counts: &mut RayCounts,
+        log: &mut PathLog,
+    ) -> TermRadiance {
+        let ray = self.camera.generate(x, y, stream.uniform2(dim::PIXEL));
+        Walk::new(self, counts, Some(log)).camera_path(ray, stream)
     }
 
     /// Radiance arriving along `ray` (unit direction), per term.
-    pub fn trace(
-        &self,
-        mut ray: Ray,
-        stream: &SampleStream,
-        counts: &mut RayCounts,
-    ) -> TermRadiance {
-        let settings = &self.settings;
-        let terms = settings.terms;
-        let last_reflection = terms
-            .max_reflections()
-            .unwrap_or(0)
-            .min(settings.max_bounces);
-        let can_hit_lights = self.lights.has_hittable_lights();
-        let mut radiance = [Vec3::ZERO; Term::COUNT];
-        let mut throughput = Vec3::ONE;
-        let mut reflections = 0u32;
-        // the previous vertex, for the MIS weight of emission hits
-        let mut previous: Option<(Vec3, f32, bool)> = None; // (position, brdf pdf, delta)
-        counts.camera += 1;
-        counts.per_term[lowest_selected(terms, 0)] += 1;
-
-        while let Some(hit) = self.accel.closest_hit(&ray) {
-            let term = Term::of_reflections(reflections).index();
-            let wo = -ray.direction;
-
-            // ── emission hit ────────────────────────────────────────────
-            let point = match hit {
-                Hit::Sphere { sphere, .. } => {
-                    // sphere lights are pure emitters: the path ends here
-                    if terms.contains_reflections(reflections) {
-                        let from = previous.map_or(ray.origin, |p| p.0);
-                        let (le, light_pdf) =
-                            self.lights.sphere_emission(sphere, from, ray.direction);
-                        let weight = previous.map_or(1.0, |(_, pdf, delta)| {
-                            mis_brdf_weight(pdf, delta, light_pdf)
-                        });
-                        radiance[term] += throughput * le * weight;
-                    }
-                    break;
-                }
-                Hit::Triangle { triangle, b, .. } => {
-                    let point = SurfacePoint::new(&self.scene, triangle, b);
-                    if terms.contains_reflections(reflections) {
-                        let le = point.emitted(&self.scene, wo);
-                        if le.max_element() > 0.0 {
-                            let weight = previous.map_or(1.0, |(from, pdf, delta)| {
-                                let light_pdf =
-                                    self.lights
-                                        .pdf_triangle(&self.scene, from, triangle, &point);
-                                mis_brdf_weight(pdf, delta, light_pdf)
-                            });
-                            radiance[term] += throughput * le * weight;
-                        }
-                    }
-                    point
-                }
-            };
-            if reflections >= last_reflection {
-                break;
-            }
-
-            // ── reflection number `next` at this vertex ──────────────────
-            let next = reflections + 1;
-            let next_term = Term::of_reflections(next).index();
-            let base = dim::vertex_base(reflections);
-            let brdf = point.brdf(&self.scene, settings);
-            if brdf.is_black() {
-                break;
-            }
-            let (frame, ng) = point.frame_towards(wo);
-            let wo_local = frame.to_local(wo);
-
-            // ── light sampling (next-event estimation) ──────────────────
-            let sample_lights = terms.contains_reflections(next) && !brdf.is_delta();
-            if sample_lights {
-                let light = self.lights.sample(
-                    &self.scene,
-                    &point,
-                    stream.uniform(base + dim::LIGHT_SELECT),
-                    stream.uniform2(base + dim::LIGHT_POSITION),
-                );
-                if let Some(light) = light {
-                    let wi_local = frame.to_local(light.wi);
-                    let f_cos = brdf.eval(wo_local, wi_local) * wi_local.z;
-                    let contribution = throughput * f_cos * light.radiance / light.pdf;
-                    // a light behind the surface (or a zero BRDF) gets no shadow ray
-                    if contribution.max_element() > 0.0 && light.wi.dot(ng) > 0.0 {
-                        counts.shadow += 1;
-                        counts.per_term[next_term] += 1;
-                        if !self.accel.occluded(&light.shadow_ray, light.target_sphere) {
-                            let weight = if light.delta {
-                                1.0
-                            } else {
-                                power_heuristic(light.pdf, brdf.pdf(wo_local, wi_local))
-                            };
-                            radiance[next_term] += contribution * weight;
-                        }
-                    }
-                }
-            }
-
-            // ── BRDF sampling: the next segment ─────────────────────────
-            // past the last term, a continuation only serves to hit an emitter
-            if next >= last_reflection && !(terms.contains_reflections(next) && can_hit_lights) {
-                break;
-            }
-            let Some(sample) = brdf.sample(
-                wo_local,
-                stream.uniform(base + dim::BRDF_LOBE),
-                stream.uniform2(base + dim::BRDF_DIRECTION),
-            ) else {
-                break;
-            };
-            let wi = frame.to_world(sample.wi).normalize();
-            if wi.dot(ng) <= 0.0 {
-                break; // below the geometric surface: shading-normal artefact
-            }
-            throughput *= sample.weight;
-            previous = Some((point.p, sample.pdf, sample.delta));
-            reflections = next;
-
-            // russian roulette after the third reflection
-            if reflections >= 3 {
-                let survival = throughput.max_element().min(0.95);
-                if stream.uniform(base + dim::RUSSIAN_ROULETTE) >= survival {
-                    break;
-                }
-                throughput /= survival;
-            }
-            ray = point.spawn_ray(wi);
-            counts.bounce += 1;
-            counts.per_term[lowest_selected(terms, reflections)] += 1;
-        }
-        radiance
+    pub fn trace(&self, ray: Ray, stream: &SampleStream, counts: &mut RayCounts) -> TermRadiance {
+        Walk::new(self, counts, None).camera_path(ray, stream)
     }
+}
+
+/// A distribution of directions on the hemisphere of a vertex.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Directions {
+    /// The BRDF's own sampling routine.
+    Brdf,
+    Uniform,
+    Cosine,
+}
+
+/// How an emission hit is weighted (the `w` of the module doc).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum EmissionWeight {
+    /// Seen from the camera, after a mirror, or found by `brdf`/`hemisphere` gathering.
+    One,
+    /// Light sampling estimates it: the hit adds nothing.
+    Zero,
+    /// Found by a direction of density `pdf` drawn at `from`, against light sampling.
+    Mis { from: Vec3, pdf: f32 },
+}
+
+/// How direct lighting is estimated at one vertex.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Gather {
+    /// No gathered direction.
+    None,
+    /// Directions traced for this purpose only.
+    Separate,
+    /// The continuation ray is the (single) gathered direction.
+    Continuation,
+}
+
+/// A surface point where the path reflects.
+struct Vertex {
+    point: SurfacePoint,
+    brdf: Brdf,
+    frame: Frame,
+    /// Geometric normal on the side the path arrives from.
+    ng: Vec3,
+    wo_local: Vec3,
+    /// Reflections before this one (0: the first hit).
+    index: u32,
+}
+
+/// The state of one sample: the context it reads, the counters and the log
+/// it writes, and the radiance gathered so far.
+struct Walk<'a> {
+    context: &'a RenderContext,
+    counts: &'a mut RayCounts,
+    log: Option<&'a mut PathLog>,
+    radiance: TermRadiance,
+    terms: TermSet,
+    last_reflection: u32,
+    can_hit_lights: bool,
+}
+
+impl<'a> Walk<'a> {
+    fn new(
+        context: &'a RenderContext,
+        counts: &'a mut RayCounts,
+        log: Option<&'a mut PathLog>,
+    ) -> Self {
+        let settings = &context.settings;
+        let terms = settings.terms;
+        Self {
+            context,
+            counts,
+            log,
+            radiance: [Vec3::ZERO; Term::COUNT],
+            terms,
+            last_reflection: terms
+                .max_reflections()
+                .unwrap_or(0)
+                .min(settings.max_bounces),
+            can_hit_lights: context.lights.has_hittable_lights(),
+        }
+    }
+
+    /// The whole sample: the camera segment, then the first vertex and its
+    /// `indirect_samples` continuations.
+    fn camera_path(mut self, ray: Ray, stream: &SampleStream) -> TermRadiance {
+        self.counts.camera += 1;
+        self.counts.per_term[lowest_selected(self.terms, 0)] += 1;
+        let first = self.follow(ray, 0, Vec3::ONE, EmissionWeight::One, SegmentKind::Camera);
+        let Some(first) = first else {
+            return self.radiance;
+        };
+        let splits = self.context.settings.indirect_samples.max(1);
+        let gather = self.gather_plan(&first, splits);
+        self.direct_lighting(&first, Vec3::ONE, stream, gather);
+        let share = Vec3::splat(1.0 / splits as f32);
+        for m in 0..splits {
+            let stream = stream.split(m, splits);
+            if let Some((vertex, throughput)) = self.continuation(&first, share, &stream, gather) {
+                self.rest_of_path(vertex, throughput, &stream);
+            }
+        }
+        self.radiance
+    }
+
+    /// The path from `vertex` on: direct lighting and one continuation per vertex.
+    fn rest_of_path(&mut self, mut vertex: Vertex, mut throughput: Vec3, stream: &SampleStream) {
+        loop {
+            let gather = self.gather_plan(&vertex, 1);
+            self.direct_lighting(&vertex, throughput, stream, gather);
+            match self.continuation(&vertex, throughput, stream, gather) {
+                Some((next, next_throughput)) => (vertex, throughput) = (next, next_throughput),
+                None => return,
+            }
+        }
+    }
+
+    /// Traces `ray` (the path's segment number `reflections`, 0 from the
+    /// camera), files the emission it meets with `weight`, and returns the
+    /// vertex it reaches if the path may reflect there.
+    fn follow(
+        &mut self,
+        ray: Ray,
+        reflections: u32,
+        throughput: Vec3,
+        weight: EmissionWeight,
+        kind: SegmentKind,
+    ) -> Option<Vertex> {
+        let term = Term::of_reflections(reflections);
+        let counted = weight != EmissionWeight::Zero && self.terms.contains(term);
+        let Some(hit) = self.accel().closest_hit(&ray) else {
+            self.record_escape(&ray, kind, term);
+            return None;
+        };
+        let mut emitted = Vec3::ZERO;
+        let vertex = match hit {
+            // sphere lights are pure emitters: the path ends here
+            Hit::Sphere { sphere, .. } => {
+                if counted {
+                    let (le, w) = self.sphere_emission(sphere, ray.direction, weight);
+                    emitted = throughput * le * w;
+                }
+                None
+            }
+            Hit::Triangle { triangle, b, .. } => {
+                let point = SurfacePoint::new(&self.context.scene, triangle, b);
+                let wo = -ray.direction;
+                if counted {
+                    let (le, w) = self.triangle_emission(&point, wo, weight);
+                    emitted = throughput * le * w;
+                }
+                self.vertex(point, wo, reflections)
+            }
+        };
+        self.radiance[term.index()] += emitted;
+        self.record(ray.origin, ray.at(hit.t()), kind, term, emitted);
+        vertex
+    }
+
+    /// The vertex at `point` reached along -`wo` after `reflections`
+    /// reflections, if a reflection there can serve a selected term.
+    fn vertex(&self, point: SurfacePoint, wo: Vec3, reflections: u32) -> Option<Vertex> {
+        if reflections >= self.last_reflection {
+            return None;
+        }
+        let brdf = point.brdf(&self.context.scene, &self.context.settings);
+        if brdf.is_black() {
+            return None;
+        }
+        let (frame, ng) = point.frame_towards(wo);
+        Some(Vertex {
+            point,
+            brdf,
+            frame,
+            ng,
+            wo_local: frame.to_local(wo),
+            index: reflections,
+        })
+    }
+
+    /// Whether and how directions are gathered at `vertex`, which has `continuations`.
+    fn gather_plan(&self, vertex: &Vertex, continuations: u32) -> Gather {
+        let settings = &self.context.settings;
+        let gathering = self.can_hit_lights
+            && !vertex.brdf.is_delta()
+            && self.terms.contains_reflections(vertex.index + 1)
+            && gather_directions(settings.light_sampling).is_some();
+        if !gathering {
+            Gather::None
+        } else if settings.light_samples <= 1
+            && continuations == 1
+            && gather_directions(settings.light_sampling)
+                == Some(self.continuation_directions(&vertex.brdf))
+        {
+            Gather::Continuation
+        } else {
+            Gather::Separate
+        }
+    }
+
+    // ── direct lighting ──────────────────────────────────────────────
+
+    /// The light samples and separately gathered directions of `vertex`, filed under its next term.
+    fn direct_lighting(
+        &mut self,
+        vertex: &Vertex,
+        throughput: Vec3,
+        stream: &SampleStream,
+        gather: Gather,
+    ) {
+        if vertex.brdf.is_delta() || !self.terms.contains_reflections(vertex.index + 1) {
+            return;
+        }
+        let settings = &self.context.settings;
+        let count = settings.light_samples.max(1);
+        let share = throughput / count as f32;
+        let light_samples = match settings.light_sampling {
+            LightSampling::Area | LightSampling::SolidAngle | LightSampling::Mis => true,
+            // only the Dirac lights remain for light samples
+            LightSampling::Brdf | LightSampling::Hemisphere => {
+                self.context.lights.has_delta_lights()
+            }
+        };
+        if light_samples {
+            for j in 0..count {
+                self.light_sample(vertex, share, &stream.split(j, count));
+            }
+        }
+        if gather == Gather::Separate {
+            for j in 0..count {
+                self.gathered_direction(vertex, share, &stream.split(j, count));
+            }
+        }
+    }
+
+    /// One light sample (next-event estimation) at `vertex`.
+    fn light_sample(&mut self, vertex: &Vertex, throughput: Vec3, stream: &SampleStream) {
+        let context = self.context;
+        let settings = &context.settings;
+        let base = dim::vertex_base(vertex.index);
+        let Some((index, probability)) = context
+            .lights
+            .pick(stream.uniform(base + dim::LIGHT_SELECT))
+        else {
+            return;
+        };
+        let extended = !context.lights.lights[index].is_delta();
+        if extended
+            && matches!(
+                settings.light_sampling,
+                LightSampling::Brdf | LightSampling::Hemisphere
+            )
+        {
+            return; // weight 0: gathering alone finds extended lights
+        }
+        let Some(light) = context.lights.sample_light(
+            &context.scene,
+            &vertex.point,
+            index,
+            probability,
+            stream.uniform2(base + dim::LIGHT_POSITION),
+        ) else {
+            return;
+        };
+        let wi_local = vertex.frame.to_local(light.wi);
+        let f_cos = vertex.brdf.eval(vertex.wo_local, wi_local) * wi_local.z;
+        let contribution = throughput * f_cos * light.radiance / light.pdf;
+        // a light behind the surface (or a zero BRDF) gets no shadow ray
+        if contribution.max_element() <= 0.0 || light.wi.dot(vertex.ng) <= 0.0 {
+            return;
+        }
+        let term = Term::of_reflections(vertex.index + 1);
+        self.counts.shadow += 1;
+        self.counts.per_term[term.index()] += 1;
+        let occluded = self
+            .accel()
+            .occluded(&light.shadow_ray, light.target_sphere);
+        let mut added = Vec3::ZERO;
+        if !occluded {
+            let weight = if light.delta || settings.light_sampling != LightSampling::Mis {
+                1.0
+            } else {
+                self.mis(light.pdf, vertex.brdf.pdf(vertex.wo_local, wi_local))
+            };
+            added = contribution * weight;
+            self.radiance[term.index()] += added;
+        }
+        let ray = light.shadow_ray;
+        self.record(
+            ray.origin,
+            ray.at(ray.t_max),
+            SegmentKind::Shadow { occluded },
+            term,
+            added,
+        );
+    }
+
+    /// One direction gathered at `vertex` (traced on its own), counted if it finds a light.
+    fn gathered_direction(&mut self, vertex: &Vertex, throughput: Vec3, stream: &SampleStream) {
+        let Some(directions) = gather_directions(self.context.settings.light_sampling) else {
+            return;
+        };
+        let base = dim::vertex_base(vertex.index);
+        let Some(sample) = draw_direction(
+            &vertex.brdf,
+            vertex.wo_local,
+            directions,
+            stream.uniform(base + dim::GATHER_LOBE),
+            stream.uniform2(base + dim::GATHER_DIRECTION),
+        ) else {
+            return;
+        };
+        let wi = vertex.frame.to_world(sample.wi).normalize();
+        if wi.dot(vertex.ng) <= 0.0 {
+            return; // below the geometric surface: shading-normal artefact
+        }
+        let term = Term::of_reflections(vertex.index + 1);
+        self.counts.gather += 1;
+        self.counts.per_term[term.index()] += 1;
+        let ray = vertex.point.spawn_ray(wi);
+        let weight = self.gather_weight(vertex, sample.pdf);
+        let hit = self.accel().closest_hit(&ray);
+        let (le, w) = match hit {
+            None => {
+                self.record_escape(&ray, SegmentKind::Gather { hit_light: false }, term);
+                return;
+            }
+            Some(Hit::Sphere { sphere, .. }) => self.sphere_emission(sphere, wi, weight),
+            Some(Hit::Triangle { triangle, b, .. }) => {
+                if self.context.lights.light_of_triangle(triangle).is_some() {
+                    let point = SurfacePoint::new(&self.context.scene, triangle, b);
+                    self.triangle_emission(&point, -wi, weight)
+                } else {
+                    (Vec3::ZERO, 0.0)
+                }
+            }
+        };
+        let added = throughput * sample.weight * le * w;
+        self.radiance[term.index()] += added;
+        let hit_t = hit.map_or(0.0, |h| h.t());
+        self.record(
+            ray.origin,
+            ray.at(hit_t),
+            SegmentKind::Gather {
+                hit_light: le.max_element() > 0.0,
+            },
+            term,
+            added,
+        );
+    }
+
+    /// The weight of an emission hit found by a gathered direction of density `pdf` at `vertex`.
+    fn gather_weight(&self, vertex: &Vertex, pdf: f32) -> EmissionWeight {
+        match self.context.settings.light_sampling {
+            LightSampling::Mis => EmissionWeight::Mis {
+                from: vertex.point.p,
+                pdf,
+            },
+            LightSampling::Brdf | LightSampling::Hemisphere => EmissionWeight::One,
+            LightSampling::Area | LightSampling::SolidAngle => EmissionWeight::Zero,
+        }
+    }
+
+    // ── continuation ─────────────────────────────────────────────────
+
+    /// The distribution the continuation at a vertex of `brdf` is drawn from.
+    fn continuation_directions(&self, brdf: &Brdf) -> Directions {
+        if brdf.is_delta() {
+            return Directions::Brdf;
+        }
+        match self.context.settings.indirect_sampling {
+            IndirectSampling::Uniform => Directions::Uniform,
+            IndirectSampling::Cosine => Directions::Cosine,
+            IndirectSampling::Brdf => Directions::Brdf,
+        }
+    }
+
+    /// Draws and traces the next reflection from `vertex` (with `throughput`
+    /// there): the next vertex and its throughput, if the path goes on.
+    fn continuation(
+        &mut self,
+        vertex: &Vertex,
+        throughput: Vec3,
+        stream: &SampleStream,
+        gather: Gather,
+    ) -> Option<(Vertex, Vec3)> {
+        let next = vertex.index + 1;
+        let delta = vertex.brdf.is_delta();
+        // how the emission the continuation may hit is weighted (its pdf comes below)
+        let finds_lights = delta || gather == Gather::Continuation;
+        // past the last term, a continuation only serves to hit an emitter
+        if next >= self.last_reflection
+            && !(finds_lights && self.can_hit_lights && self.terms.contains_reflections(next))
+        {
+            return None;
+        }
+        let base = dim::vertex_base(vertex.index);
+        let sample = draw_direction(
+            &vertex.brdf,
+            vertex.wo_local,
+            self.continuation_directions(&vertex.brdf),
+            stream.uniform(base + dim::BRDF_LOBE),
+            stream.uniform2(base + dim::BRDF_DIRECTION),
+        )?;
+        let wi = vertex.frame.to_world(sample.wi).normalize();
+        if wi.dot(vertex.ng) <= 0.0 {
+            return None; // below the geometric surface: shading-normal artefact
+        }
+        let weight = if sample.delta {
+            EmissionWeight::One
+        } else if gather == Gather::Continuation {
+            self.gather_weight(vertex, sample.pdf)
+        } else {
+            EmissionWeight::Zero
+        };
+        let mut throughput = throughput * sample.weight;
+
+        // russian roulette after the third reflection
+        if next >= 3 {
+            let survival = throughput.max_element().min(0.95);
+            if stream.uniform(base + dim::RUSSIAN_ROULETTE) >= survival {
+                return None;
+            }
+            throughput /= survival;
+        }
+        self.counts.bounce += 1;
+        self.counts.per_term[lowest_selected(self.terms, next)] += 1;
+        let ray = vertex.point.spawn_ray(wi);
+        let next_vertex = self.follow(ray, next, throughput, weight, SegmentKind::Bounce)?;
+        Some((next_vertex, throughput))
+    }
+
+    // ── emission ─────────────────────────────────────────────────────
+
+    /// Radiance leaving emissive `point` towards unit `wo`, and its weight.
+    fn triangle_emission(
+        &self,
+        point: &SurfacePoint,
+        wo: Vec3,
+        weight: EmissionWeight,
+    ) -> (Vec3, f32) {
+        let scene = &self.context.scene;
+        let le = point.emitted(scene, wo);
+        let weight = match weight {
+            _ if le.max_element() <= 0.0 => 0.0,
+            EmissionWeight::One => 1.0,
+            EmissionWeight::Zero => 0.0,
+            EmissionWeight::Mis { from, pdf } => {
+                let light_pdf =
+                    self.context
+                        .lights
+                        .pdf_triangle(scene, from, point.triangle, point);
+                self.mis(pdf, light_pdf)
+            }
+        };
+        (le, weight)
+    }
+
+    /// Radiance leaving accel sphere `sphere` along unit `direction`, and its weight.
+    fn sphere_emission(&self, sphere: u32, direction: Vec3, weight: EmissionWeight) -> (Vec3, f32) {
+        let lights = &self.context.lights;
+        match weight {
+            EmissionWeight::Zero => (Vec3::ZERO, 0.0),
+            // the density only matters to MIS: any origin will do
+            EmissionWeight::One => (lights.sphere_emission(sphere, Vec3::ZERO, direction).0, 1.0),
+            EmissionWeight::Mis { from, pdf } => {
+                let (le, light_pdf) = lights.sphere_emission(sphere, from, direction);
+                (le, self.mis(pdf, light_pdf))
+            }
+        }
+    }
+
+    /// The MIS weight of a strategy of density `pdf` against one of density `other`.
+    fn mis(&self, pdf: f32, other: f32) -> f32 {
+        match self.context.settings.mis_heuristic {
+            MisHeuristic::Balance => balance_heuristic(pdf, other),
+            MisHeuristic::Power => power_heuristic(pdf, other),
+        }
+    }
+
+    // ── recording ────────────────────────────────────────────────────
+
+    fn accel(&self) -> &'a Accel {
+        &self.context.accel
+    }
+
+    fn record(&mut self, from: Vec3, to: Vec3, kind: SegmentKind, term: Term, radiance: Vec3) {
+        if let Some(log) = self.log.as_deref_mut() {
+            log.segments.push(PathSegment {
+                from,
+                to,
+                kind,
+                term,
+                radiance,
+            });
+        }
+    }
+
+    /// Records a ray that left the scene (it added nothing).
+    fn record_escape(&mut self, ray: &Ray, kind: SegmentKind, term: Term) {
+        if self.log.is_some() {
+            let length = self.context.scene.bounds().diagonal().max(1.0);
+            let to = ray.origin + ray.direction.normalize_or_zero() * length;
+            self.record(ray.origin, to, kind, term, Vec3::ZERO);
+        }
+    }
+}
+
+/// The distribution of the directions `strategy` gathers, if it gathers any.
+fn gather_directions(strategy: LightSampling) -> Option<Directions> {
+    match strategy {
+        LightSampling::Brdf | LightSampling::Mis => Some(Directions::Brdf),
+        LightSampling::Hemisphere => Some(Directions::Uniform),
+        LightSampling::Area | LightSampling::SolidAngle => None,
+    }
+}
+
+/// A direction (local frame) drawn from `directions` at a vertex of `brdf`
+/// seen from `wo`, with f cos θ / pdf and its pdf; `None` if it reflects nothing.
+fn draw_direction(
+    brdf: &Brdf,
+    wo: Vec3,
+    directions: Directions,
+    u_lobe: f32,
+    u: glam::Vec2,
+) -> Option<BrdfSample> {
+    let (wi, pdf) = match directions {
+        Directions::Brdf => return brdf.sample(wo, u_lobe, u),
+        Directions::Uniform => (uniform_hemisphere(u), UNIFORM_HEMISPHERE_PDF),
+        Directions::Cosine => {
+            let wi = cosine_hemisphere(u);
+            (wi, cosine_hemisphere_pdf(wi.z))
+        }
+    };
+    let f = brdf.eval(wo, wi);
+    if pdf <= 0.0 || f.max_element() <= 0.0 {
+        return None;
+    }
+    Some(BrdfSample {
+        wi,
+        weight: f * wi.z / pdf,
+        pdf,
+        delta: false,
+    })
 }
 
 /// Index of the first selected term with `reflections` reflections or more.
 fn lowest_selected(terms: TermSet, reflections: u32) -> usize {
     let from = Term::of_reflections(reflections);
     terms.iter().find(|&t| t >= from).unwrap_or(from).index()
-}
-
-/// MIS weight of an emission hit reached by BRDF sampling with density `brdf_pdf`.
-fn mis_brdf_weight(brdf_pdf: f32, delta: bool, light_pdf: f32) -> f32 {
-    if delta {
-        1.0
-    } else {
-        power_heuristic(brdf_pdf, light_pdf)
-    }
 }

@@ -27,15 +27,18 @@
 //! sphere of radius r with radiance I / (π r²). A spot light keeps its cone:
 //! the sphere's radiance towards ω is I(ω) / (π r²).
 
-use glam::{Vec2, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 use std::f32::consts::PI;
 
 use crate::accel::{Sphere, intersect_sphere};
 use crate::color::luminance;
 use crate::geometry::{Frame, Ray, offset_ray_origin};
-use crate::sampling::{AliasTable, uniform_cone, uniform_cone_pdf, uniform_triangle};
+use crate::sampling::{
+    AliasTable, spherical_triangle, spherical_triangle_area, uniform_cone, uniform_cone_pdf,
+    uniform_triangle,
+};
 use crate::scene::{NO_ID, PunctualKind, Scene};
-use crate::settings::{LightMode, RenderSettings};
+use crate::settings::{LightMode, LightSampling, LightSelection, RenderSettings};
 use crate::shading::SurfacePoint;
 
 /// Shadow rays stop this fraction short of the light point (pbrt's ShadowEpsilon):
@@ -130,11 +133,33 @@ pub struct LightSample {
     pub target_sphere: Option<u32>,
 }
 
+/// How a point on an emissive triangle is drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TriangleSampling {
+    /// Uniform in area: pdf d² / (A cos θ_q) in solid angle.
+    #[default]
+    Area,
+    /// Uniform in the solid angle Ω the triangle subtends: pdf 1/Ω; area
+    /// sampling where Ω is outside [`SOLID_ANGLE_RANGE`].
+    SolidAngle,
+}
+
+/// Solid angles (sr) sampled as spherical triangles; outside, f32 and f64
+/// rounding make Arvo's method unreliable and area sampling takes over
+/// (pbrt-v4's bounds).
+pub const SOLID_ANGLE_RANGE: std::ops::RangeInclusive<f64> = 3e-4..=6.22;
+
 /// The lights of a scene under one light mode, with their selection table.
 #[derive(Clone, Debug, Default)]
 pub struct LightTable {
     pub lights: Vec<Light>,
+    /// Selection probabilities (by power, or uniform over the lights that emit).
     selection: AliasTable,
+    pub triangle_sampling: TriangleSampling,
+    /// Whether some selectable light is a Dirac (point, spot, directional).
+    has_delta_lights: bool,
+    /// Whether some selectable light can be hit by a ray (triangle or sphere).
+    has_hittable_lights: bool,
     /// Light index of each scene triangle (`NO_ID` if it is not a light).
     triangle_light: Vec<u32>,
     /// Light index of each accel sphere.
@@ -161,12 +186,23 @@ impl LightTable {
             .unwrap_or(0.02 * scene.bounds().diagonal().max(1e-6));
         table.add_punctual_lights(scene, settings.light_mode == LightMode::Area, radius);
         let scene_radius = 0.5 * scene.bounds().diagonal();
-        let powers: Vec<f32> = table
-            .lights
-            .iter()
-            .map(|l| power(scene, l, scene_radius))
-            .collect();
-        table.selection = AliasTable::new(&powers);
+        let powers = table.lights.iter().map(|l| power(scene, l, scene_radius));
+        let weights: Vec<f32> = match settings.light_selection {
+            LightSelection::Power => powers.collect(),
+            LightSelection::Uniform => powers.map(|p| if p > 0.0 { 1.0 } else { 0.0 }).collect(),
+        };
+        table.selection = AliasTable::new(&weights);
+        table.triangle_sampling = match settings.light_sampling {
+            LightSampling::SolidAngle => TriangleSampling::SolidAngle,
+            _ => TriangleSampling::Area,
+        };
+        let selectable = |i: &usize| table.selection.pmf(*i) > 0.0;
+        table.has_delta_lights = (0..table.lights.len())
+            .filter(selectable)
+            .any(|i| table.lights[i].is_delta());
+        table.has_hittable_lights = (0..table.lights.len())
+            .filter(selectable)
+            .any(|i| !table.lights[i].is_delta());
         table
     }
 
@@ -288,10 +324,17 @@ impl LightTable {
 
     /// Whether some light can be hit by a ray (area or sphere lights).
     pub fn has_hittable_lights(&self) -> bool {
-        self.lights
-            .iter()
-            .enumerate()
-            .any(|(i, l)| !l.is_delta() && self.selection.pmf(i) > 0.0)
+        self.has_hittable_lights
+    }
+
+    /// Whether some light is a Dirac (only light samples can find it).
+    pub fn has_delta_lights(&self) -> bool {
+        self.has_delta_lights
+    }
+
+    /// Probability that a light sample picks light `index`.
+    pub fn selection_probability(&self, index: usize) -> f32 {
+        self.selection.pmf(index)
     }
 
     /// Light index of scene triangle `triangle`, if it is an emitter of this table.
@@ -310,9 +353,32 @@ impl LightTable {
         u_select: f32,
         u: Vec2,
     ) -> Option<LightSample> {
-        let (index, pmf) = self.selection.sample(u_select)?;
+        let (index, probability) = self.pick(u_select)?;
+        self.sample_light(scene, at, index, probability, u)
+    }
+
+    /// Picks a light from one uniform number: its index and probability.
+    pub fn pick(&self, u_select: f32) -> Option<(usize, f32)> {
+        self.selection.sample(u_select)
+    }
+
+    /// Draws a point or direction of light `index`, picked with probability
+    /// `probability`, seen from `at` (the returned pdf includes the probability).
+    pub fn sample_light(
+        &self,
+        scene: &Scene,
+        at: &SurfacePoint,
+        index: usize,
+        probability: f32,
+        u: Vec2,
+    ) -> Option<LightSample> {
         let mut sample = match self.lights[index] {
-            Light::Triangle { triangle, area } => sample_triangle(scene, at, triangle, area, u)?,
+            Light::Triangle { triangle, area } => match self.triangle_sampling {
+                TriangleSampling::Area => sample_triangle(scene, at, triangle, area, u)?,
+                TriangleSampling::SolidAngle => {
+                    sample_triangle_solid_angle(scene, at, triangle, area, u)?
+                }
+            },
             Light::Point {
                 position,
                 intensity,
@@ -364,7 +430,7 @@ impl LightTable {
         if !sample.radiance.is_finite() || sample.radiance.max_element() <= 0.0 {
             return None;
         }
-        sample.pdf *= pmf;
+        sample.pdf *= probability;
         Some(sample)
     }
 
@@ -402,7 +468,14 @@ impl LightTable {
         if cos <= 0.0 {
             return 0.0;
         }
-        self.selection.pmf(light as usize) * distance2 / (cos * area)
+        let selection = self.selection.pmf(light as usize);
+        if self.triangle_sampling == TriangleSampling::SolidAngle {
+            let solid_angle = triangle_solid_angle(scene, triangle, from);
+            if SOLID_ANGLE_RANGE.contains(&solid_angle) {
+                return selection / solid_angle as f32;
+            }
+        }
+        selection * distance2 / (cos * area)
     }
 
     /// Radiance leaving accel sphere `sphere` along unit `direction`, and the
@@ -453,7 +526,19 @@ fn sample_triangle(
     area: f32,
     u: Vec2,
 ) -> Option<LightSample> {
-    let b = uniform_triangle(u);
+    light_point_sample(scene, at, triangle, area, uniform_triangle(u))
+}
+
+/// The light that point `b` (barycentrics) of emissive triangle `triangle`
+/// (of area `area`) sends to `at`, with the shadow ray between them and the
+/// solid-angle pdf of uniform area sampling.
+fn light_point_sample(
+    scene: &Scene,
+    at: &SurfacePoint,
+    triangle: u32,
+    area: f32,
+    b: Vec3,
+) -> Option<LightSample> {
     let on_light = SurfacePoint::new(scene, triangle, b);
     let to_light = on_light.p - at.p;
     let distance2 = to_light.length_squared();
@@ -476,6 +561,58 @@ fn sample_triangle(
         shadow_ray: Ray::new(origin, target - origin, 1.0 - SHADOW_EPSILON),
         target_sphere: None,
     })
+}
+
+/// Solid angle (sr) that scene triangle `triangle` subtends from `from`.
+fn triangle_solid_angle(scene: &Scene, triangle: u32, from: Vec3) -> f64 {
+    let [a, b, c] = directions_to_triangle(scene, triangle, from);
+    spherical_triangle_area(a, b, c)
+}
+
+/// Unit directions (f64) from `from` to the vertices of scene triangle `triangle`.
+fn directions_to_triangle(scene: &Scene, triangle: u32, from: Vec3) -> [DVec3; 3] {
+    let from = from.as_dvec3();
+    scene.triangles[triangle as usize]
+        .vertices
+        .map(|v| (scene.positions[v as usize].as_dvec3() - from).normalize_or_zero())
+}
+
+/// A uniform direction in the solid angle an emissive triangle subtends from
+/// `at` (area sampling outside [`SOLID_ANGLE_RANGE`]), and the light point it meets.
+fn sample_triangle_solid_angle(
+    scene: &Scene,
+    at: &SurfacePoint,
+    triangle: u32,
+    area: f32,
+    u: Vec2,
+) -> Option<LightSample> {
+    let [a, b, c] = directions_to_triangle(scene, triangle, at.p);
+    if !SOLID_ANGLE_RANGE.contains(&spherical_triangle_area(a, b, c)) {
+        return sample_triangle(scene, at, triangle, area, u);
+    }
+    let (direction, pdf) = spherical_triangle(a, b, c, u)?;
+    // the point of the triangle along the direction, as barycentrics
+    let [p0, p1, p2] = scene.triangles[triangle as usize]
+        .vertices
+        .map(|v| scene.positions[v as usize].as_dvec3());
+    let (e1, e2) = (p1 - p0, p2 - p0);
+    let s1 = direction.cross(e2);
+    let divisor = s1.dot(e1);
+    if divisor == 0.0 {
+        return None;
+    }
+    let s = at.p.as_dvec3() - p0;
+    let b1 = (s.dot(s1) / divisor).clamp(0.0, 1.0);
+    let b2 = (direction.dot(s.cross(e1)) / divisor).clamp(0.0, 1.0);
+    let (b1, b2) = if b1 + b2 > 1.0 {
+        (b1 / (b1 + b2), b2 / (b1 + b2))
+    } else {
+        (b1, b2)
+    };
+    let barycentrics = Vec3::new((1.0 - b1 - b2) as f32, b1 as f32, b2 as f32);
+    let mut sample = light_point_sample(scene, at, triangle, area, barycentrics)?;
+    sample.pdf = pdf as f32;
+    Some(sample)
 }
 
 /// The cone of directions from `from` to `sphere`: its axis and 1 − cos θmax

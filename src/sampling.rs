@@ -17,10 +17,19 @@
 //! | [`uniform_cone`] | directions within θmax of +z | 1 / (2π (1 − cos θmax)) |
 //! | [`phong_lobe`] | directions around +z | (n + 1)/(2π) cosⁿ α |
 //! | [`uniform_triangle`] | barycentrics | 1 / area |
+//! | [`spherical_triangle`] | directions towards a triangle | 1 / Ω (solid angle) |
 //!
 //! [`AliasTable`] picks an index in proportion to given weights in O(1).
+//!
+//! **Spherical triangles** (Arvo 1995). The directions from a point towards
+//! a triangle's vertices, a, b, c, bound a spherical triangle of area (solid
+//! angle) Ω = α + β + γ − π, α, β, γ its angles, or, better conditioned,
+//! tan(Ω/2) = |a·(b×c)| / (1 + a·b + b·c + c·a) (Van Oosterom and Strackee
+//! 1983). [`spherical_triangle`] draws directions uniformly inside it: u₀
+//! picks the sub-triangle a b ĉ of area u₀·Ω (ĉ on the arc from a to c), u₁ a
+//! point on the arc from b to ĉ with the density that makes the whole uniform.
 
-use glam::{Vec2, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 use std::f32::consts::PI;
 
 /// Fixed dimensions of a sample: each use of a random number has its own.
@@ -177,6 +186,64 @@ pub fn uniform_triangle(u: Vec2) -> Vec3 {
     Vec3::new(b0, b1, 1.0 - b0 - b1)
 }
 
+/// Solid angle (sr) of the spherical triangle of unit directions `a`, `b`,
+/// `c` (Van Oosterom–Strackee): 0 for a degenerate triangle, at most 2π.
+pub fn spherical_triangle_area(a: DVec3, b: DVec3, c: DVec3) -> f64 {
+    let triple = a.dot(b.cross(c)).abs();
+    2.0 * triple.atan2(1.0 + a.dot(b) + b.dot(c) + c.dot(a))
+}
+
+/// Uniform direction inside the spherical triangle of unit directions `a`,
+/// `b`, `c` (Arvo's method, in f64), with its density 1/Ω w.r.t. solid
+/// angle (Ω from [`spherical_triangle_area`]). `None` for a degenerate triangle.
+pub fn spherical_triangle(a: DVec3, b: DVec3, c: DVec3, u: Vec2) -> Option<(DVec3, f64)> {
+    let solid_angle = spherical_triangle_area(a, b, c);
+    // the planes through the origin and each side; the angles between them
+    let (n_ab, n_bc, n_ca) = (a.cross(b), b.cross(c), c.cross(a));
+    if n_ab.length_squared() == 0.0 || n_bc.length_squared() == 0.0 || n_ca.length_squared() == 0.0
+    {
+        return None;
+    }
+    let (n_ab, n_bc, n_ca) = (n_ab.normalize(), n_bc.normalize(), n_ca.normalize());
+    let alpha = angle_between(n_ab, -n_ca);
+    let beta = angle_between(n_bc, -n_ab);
+    let gamma = angle_between(n_ca, -n_bc);
+    let angle_excess = alpha + beta + gamma - std::f64::consts::PI;
+
+    // the sub-triangle a b ĉ of area u₀·Ω: cos of its side from a to ĉ
+    let sub_area = u.x as f64 * angle_excess;
+    let (s, t) = (sub_area - alpha).sin_cos();
+    let (sin_alpha, cos_alpha) = alpha.sin_cos();
+    let k_u = t - cos_alpha;
+    let k_v = s + sin_alpha * a.dot(b);
+    let cos_side = ((k_v * t - k_u * s) * cos_alpha - k_v) / ((k_v * s + k_u * t) * sin_alpha);
+    if !cos_side.is_finite() || solid_angle <= 0.0 {
+        return None;
+    }
+    let cos_side = cos_side.clamp(-1.0, 1.0);
+    let c_hat = cos_side * a + (1.0 - cos_side * cos_side).max(0.0).sqrt() * orthogonal_part(c, a);
+
+    // a point on the arc from b to ĉ, cos θ to b uniform in [ĉ·b, 1]
+    let cos_theta = 1.0 - u.y as f64 * (1.0 - c_hat.dot(b));
+    let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
+    let direction = cos_theta * b + sin_theta * orthogonal_part(c_hat, b);
+    Some((direction.normalize(), 1.0 / solid_angle))
+}
+
+/// The unit part of `v` orthogonal to unit `axis` (zero if `v` is along it).
+fn orthogonal_part(v: DVec3, axis: DVec3) -> DVec3 {
+    (v - v.dot(axis) * axis).normalize_or_zero()
+}
+
+/// Angle between unit vectors, accurate near 0 and π (unlike acos of the dot).
+fn angle_between(v1: DVec3, v2: DVec3) -> f64 {
+    if v1.dot(v2) < 0.0 {
+        std::f64::consts::PI - 2.0 * ((v1 + v2).length() / 2.0).min(1.0).asin()
+    } else {
+        2.0 * ((v2 - v1).length() / 2.0).min(1.0).asin()
+    }
+}
+
 /// Uniform point on the unit disk (Shirley–Chiu concentric map).
 pub fn concentric_disk(u: Vec2) -> Vec2 {
     let o = 2.0 * u - Vec2::ONE;
@@ -201,6 +268,17 @@ pub fn power_heuristic(pdf_a: f32, pdf_b: f32) -> f32 {
         if pdf_a >= pdf_b { 1.0 } else { 0.0 }
     } else {
         a / (a + b)
+    }
+}
+
+/// The balance heuristic weight of a strategy of density `pdf_a` against `pdf_b`.
+pub fn balance_heuristic(pdf_a: f32, pdf_b: f32) -> f32 {
+    if pdf_a == 0.0 {
+        0.0
+    } else if !(pdf_a + pdf_b).is_finite() {
+        if pdf_a >= pdf_b { 1.0 } else { 0.0 }
+    } else {
+        pdf_a / (pdf_a + pdf_b)
     }
 }
 
