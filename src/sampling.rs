@@ -1,11 +1,43 @@
 //! Random numbers and the warps that turn them into samples.
 //!
 //! **Random numbers.** A sample's numbers are a pure function of
-//! (seed, pixel, sample index, dimension): [`SampleStream::uniform`] hashes
-//! the four together. No state is carried between calls, so the image does not
-//! depend on which thread renders which pixel, and skipping a computation
-//! (a term switched off) does not shift the numbers used by the others: each
-//! use has its own fixed dimension ([`dim`]).
+//! (sampler, seed, pixel, sample index, dimension): no state is carried
+//! between calls, so the image does not depend on which thread renders which
+//! pixel, and skipping a computation (a term switched off) does not shift the
+//! numbers used by the others: each use has its own fixed dimension ([`dim`]).
+//! Three samplers ([`Sampler`]) produce them:
+//!
+//! * **independent** — a hash of (seed, pixel, sample, dimension): plain
+//!   Monte Carlo, error ∝ 1/√N.
+//! * **stratified** (jittered) — sample indices go in blocks of 16. Within a
+//!   block, a pair `uniform2(d)` puts one point in each cell of a 4 × 4 grid,
+//!   and a single `uniform(d)` one number in each sixteenth of [0, 1): a
+//!   per-(pixel, block, dimension) permutation of the strata (Kensler's hashed
+//!   permutation, then a random xor), plus a hashed jitter inside the stratum.
+//!   The variance of a smooth integrand drops fully at multiples of 16 samples.
+//! * **Sobol** — the pixel's own Owen-scrambled Sobol sequence (Burley 2020,
+//!   the `sobol_burley` crate; the scramble is hashed from the seed and the
+//!   pixel): dimension d is Sobol dimension d, so a sample is one point
+//!   stratified jointly over all its dimensions (the pixel pair, dimensions
+//!   0 and 1, is a (0, 2)-sequence: every 2^k consecutive aligned samples fill
+//!   each elementary interval of area 2^−k once). Past the tables' 256
+//!   dimensions (deep path vertices), numbers are independent hashes (padding);
+//!   past the 2^16 points of a sequence, the samples continue in a sequence of
+//!   another scramble.
+//!
+//! **Why every estimator stays unbiased.** Each number taken alone is uniform
+//! on [0, 1) over the random scramble, whatever its sample index: a stratum
+//! permutation followed by a random xor puts any slot in any stratum with
+//! probability 1/16 before the uniform jitter, and Owen scrambling makes each
+//! point of a net uniform. Each sample therefore estimates the integral
+//! without bias, and so does any prefix of samples: a progressive render may
+//! stop anywhere, not only at a multiple of 16 or at a power of two. The
+//! samplers only make the errors of a pixel's samples cancel better.
+//!
+//! **Repetitions.** The j-th of N repeated uses within sample n (light samples,
+//! continuations) reads [`SampleStream::split`]: for the stratified and Sobol
+//! samplers it is sample n·N + j of the same dimensions, so N light samples
+//! per pixel sample are N consecutive, well-spread points.
 //!
 //! **Warps.** Each maps the unit square to a domain with a known density:
 //!
@@ -17,6 +49,7 @@
 //! | [`uniform_cone`] | directions within θmax of +z | 1 / (2π (1 − cos θmax)) |
 //! | [`phong_lobe`] | directions around +z | (n + 1)/(2π) cosⁿ α |
 //! | [`uniform_triangle`] | barycentrics | 1 / area |
+//! | [`concentric_disk`] | the unit disk | 1 / π |
 //!
 //! [`AliasTable`] picks an index in proportion to given weights in O(1).
 

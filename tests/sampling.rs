@@ -62,7 +62,9 @@ fn ln_gamma(x: f64) -> f64 {
     let series = COEFFICIENTS[1..]
         .iter()
         .enumerate()
-        .fold(COEFFICIENTS[0], |sum, (i, c)| sum + c / (x + i as f64 + 1.0));
+        .fold(COEFFICIENTS[0], |sum, (i, c)| {
+            sum + c / (x + i as f64 + 1.0)
+        });
     0.5 * (2.0 * PI).ln() + (x + 0.5) * t.ln() - t + series.ln()
 }
 
@@ -159,10 +161,7 @@ fn chi2_test(observed: &[u64], probabilities: &[f64]) -> Chi2 {
             None => groups.push(open),
         }
     }
-    let statistic: f64 = groups
-        .iter()
-        .map(|&(o, e)| (o - e) * (o - e) / e)
-        .sum();
+    let statistic: f64 = groups.iter().map(|&(o, e)| (o - e) * (o - e) / e).sum();
     let dof = groups.len().saturating_sub(1).max(1);
     Chi2 {
         statistic,
@@ -210,7 +209,14 @@ fn integrate(f: &impl Fn(f64) -> f64, a: f64, b: f64, tolerance: f64) -> f64 {
             let (a, b) = (a + k as f64 * width, a + (k + 1) as f64 * width);
             let (fa, fm, fb) = (f(a), f(0.5 * (a + b)), f(b));
             let whole = (b - a) / 6.0 * (fa + 4.0 * fm + fb);
-            simpson(f, (a, b), (fa, fm, fb), whole, tolerance / PIECES as f64, 30)
+            simpson(
+                f,
+                (a, b),
+                (fa, fm, fb),
+                whole,
+                tolerance / PIECES as f64,
+                30,
+            )
         })
         .sum()
 }
@@ -263,7 +269,12 @@ impl DirectionBins {
         let over_phi = |w: f64, phi_bin: usize| {
             const SUB: usize = 8;
             (0..SUB)
-                .map(|k| pdf(w, (phi_bin as f64 + (k as f64 + 0.5) / SUB as f64) * phi_width))
+                .map(|k| {
+                    pdf(
+                        w,
+                        (phi_bin as f64 + (k as f64 + 0.5) / SUB as f64) * phi_width,
+                    )
+                })
                 .sum::<f64>()
                 * phi_width
                 / SUB as f64
@@ -298,10 +309,7 @@ fn direction_chi2(
     let mut observed = vec![0u64; bins.count()];
     for i in 0..WARP_SAMPLES {
         let d = warp(warp_input(seed, i));
-        assert!(
-            (d.length() - 1.0).abs() < 1e-5,
-            "not a unit direction: {d}"
-        );
+        assert!((d.length() - 1.0).abs() < 1e-5, "not a unit direction: {d}");
         observed[bins.index(d)] += 1;
     }
     chi2_test(&observed, &bins.probabilities(&pdf))
@@ -355,12 +363,7 @@ fn uniform_sphere_matches_its_pdf() {
         w_bins: 40,
         phi_bins: 40,
     };
-    let result = direction_chi2(
-        3,
-        uniform_sphere,
-        |_, _| UNIFORM_SPHERE_PDF as f64,
-        bins,
-    );
+    let result = direction_chi2(3, uniform_sphere, |_, _| UNIFORM_SPHERE_PDF as f64, bins);
     assert_fits("uniform sphere", &result);
 }
 
@@ -509,9 +512,18 @@ fn chi2_rejects_a_wrong_density() {
         hemisphere_bins(),
     );
     for (what, result) in [
-        ("uniform hemisphere against the cosine pdf", uniform_as_cosine),
-        ("cosine hemisphere against the uniform pdf", cosine_as_uniform),
-        ("Phong lobe 10 against the pdf of 11", lobe_of_another_exponent),
+        (
+            "uniform hemisphere against the cosine pdf",
+            uniform_as_cosine,
+        ),
+        (
+            "cosine hemisphere against the uniform pdf",
+            cosine_as_uniform,
+        ),
+        (
+            "Phong lobe 10 against the pdf of 11",
+            lobe_of_another_exponent,
+        ),
     ] {
         assert!(
             result.p_value < 1e-12,
@@ -574,9 +586,8 @@ fn every_number_of_every_sampler_is_uniform_at_any_sample_index() {
                     let cell = |v: f32| (v * GRID_2D as f32) as usize;
                     counts_2d[cell(p.y) * GRID_2D + cell(p.x)] += 1;
                 }
-                let what = format!(
-                    "{sampler:?} sample {sample} (split {split:?}) dimension {dimension}"
-                );
+                let what =
+                    format!("{sampler:?} sample {sample} (split {split:?}) dimension {dimension}");
                 let uniform_1d = vec![1.0 / BINS_1D as f64; BINS_1D];
                 assert_fits(&format!("{what}, 1D"), &chi2_test(&counts_1d, &uniform_1d));
                 let uniform_2d = vec![1.0 / (GRID_2D * GRID_2D) as f64; GRID_2D * GRID_2D];
@@ -688,7 +699,10 @@ fn splits_read_consecutive_samples() {
     }
     // the independent sampler's repetitions are new numbers, not other samples
     let independent = stream(Sampler::Independent, 9, 1).split(0, 4);
-    assert_ne!(independent.uniform(0), stream(Sampler::Independent, 9, 4).uniform(0));
+    assert_ne!(
+        independent.uniform(0),
+        stream(Sampler::Independent, 9, 4).uniform(0)
+    );
 }
 
 /// Renders `settings` with `threads` threads.
@@ -718,7 +732,10 @@ fn every_sampler_renders_the_same_bits_whatever_the_threads_and_terms() {
         settings.sampler = sampler;
         let one = render_with_threads(&settings, 3, 1);
         let two = render_with_threads(&settings, 3, 2);
-        assert!(bits(&one) == bits(&two), "{sampler:?}: 2 threads differ from 1");
+        assert!(
+            bits(&one) == bits(&two),
+            "{sampler:?}: 2 threads differ from 1"
+        );
 
         let all = render_film(builtin::cornell(), &settings, 3);
         settings.terms = TermSet::only(Term::L2);
