@@ -1,9 +1,9 @@
 //! The render loop: passes of one sample per pixel, spread over threads.
 //!
 //! Pass s draws sample s of every pixel; the sample's random numbers come from
-//! (seed, pixel, s) only, so the film is bit-identical whatever the number of
-//! threads or the order in which tiles finish. Tiles are bands of rows,
-//! handed to rayon's work-stealing pool.
+//! (sampler, seed, pixel, s) only, so the film is bit-identical whatever the
+//! number of threads or the order in which tiles finish. Tiles are bands of
+//! rows, handed to rayon's work-stealing pool.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -71,7 +71,7 @@ pub fn render_pass_cancellable(
     buffer
         .samples
         .resize(film.pixel_count(), [Vec3::ZERO; Term::COUNT]);
-    let seed = context.settings.seed;
+    let (seed, sampler) = (context.settings.seed, context.settings.sampler);
     let counts = buffer
         .samples
         .par_chunks_mut(width * TILE_ROWS)
@@ -84,7 +84,7 @@ pub fn render_pass_cancellable(
             for (offset, sample) in pixels.iter_mut().enumerate() {
                 let index = tile * width * TILE_ROWS + offset;
                 let (x, y) = ((index % width) as u32, (index / width) as u32);
-                let stream = SampleStream::new(seed, index as u64, pass as u64);
+                let stream = SampleStream::with_sampler(sampler, seed, index as u64, pass as u64);
                 *sample = context.sample_pixel(x, y, &stream, &mut counts);
             }
             counts

@@ -1,11 +1,43 @@
 //! Random numbers and the warps that turn them into samples.
 //!
 //! **Random numbers.** A sample's numbers are a pure function of
-//! (seed, pixel, sample index, dimension): [`SampleStream::uniform`] hashes
-//! the four together. No state is carried between calls, so the image does not
-//! depend on which thread renders which pixel, and skipping a computation
-//! (a term switched off) does not shift the numbers used by the others: each
-//! use has its own fixed dimension ([`dim`]).
+//! (sampler, seed, pixel, sample index, dimension): no state is carried
+//! between calls, so the image does not depend on which thread renders which
+//! pixel, and skipping a computation (a term switched off) does not shift the
+//! numbers used by the others: each use has its own fixed dimension ([`dim`]).
+//! Three samplers ([`Sampler`]) produce them:
+//!
+//! * **independent** — a hash of (seed, pixel, sample, dimension): plain
+//!   Monte Carlo, error ∝ 1/√N.
+//! * **stratified** (jittered) — sample indices go in blocks of 16. Within a
+//!   block, a pair `uniform2(d)` puts one point in each cell of a 4 × 4 grid,
+//!   and a single `uniform(d)` one number in each sixteenth of [0, 1): a
+//!   per-(pixel, block, dimension) permutation of the strata (Kensler's hashed
+//!   permutation, then a random xor), plus a hashed jitter inside the stratum.
+//!   The variance of a smooth integrand drops fully at multiples of 16 samples.
+//! * **Sobol** — the pixel's own Owen-scrambled Sobol sequence (Burley 2020,
+//!   the `sobol_burley` crate; the scramble is hashed from the seed and the
+//!   pixel): dimension d is Sobol dimension d, so a sample is one point
+//!   stratified jointly over all its dimensions (the pixel pair, dimensions
+//!   0 and 1, is a (0, 2)-sequence: every 2^k consecutive aligned samples fill
+//!   each elementary interval of area 2^−k once). Past the tables' 256
+//!   dimensions (deep path vertices), numbers are independent hashes (padding);
+//!   past the 2^16 points of a sequence, the samples continue in a sequence of
+//!   another scramble.
+//!
+//! **Why every estimator stays unbiased.** Each number taken alone is uniform
+//! on [0, 1) over the random scramble, whatever its sample index: a stratum
+//! permutation followed by a random xor puts any slot in any stratum with
+//! probability 1/16 before the uniform jitter, and Owen scrambling makes each
+//! point of a net uniform. Each sample therefore estimates the integral
+//! without bias, and so does any prefix of samples: a progressive render may
+//! stop anywhere, not only at a multiple of 16 or at a power of two. The
+//! samplers only make the errors of a pixel's samples cancel better.
+//!
+//! **Repetitions.** The j-th of N repeated uses within sample n (light samples,
+//! continuations) reads [`SampleStream::split`]: for the stratified and Sobol
+//! samplers it is sample n·N + j of the same dimensions, so N light samples
+//! per pixel sample are N consecutive, well-spread points.
 //!
 //! **Warps.** Each maps the unit square to a domain with a known density:
 //!
@@ -18,6 +50,7 @@
 //! | [`phong_lobe`] | directions around +z | (n + 1)/(2π) cosⁿ α |
 //! | [`uniform_triangle`] | barycentrics | 1 / area |
 //! | [`spherical_triangle`] | directions towards a triangle | 1 / Ω (solid angle) |
+//! | [`concentric_disk`] | the unit disk | 1 / π |
 //!
 //! [`AliasTable`] picks an index in proportion to given weights in O(1).
 //!
@@ -31,6 +64,8 @@
 
 use glam::{DVec3, Vec2, Vec3};
 use std::f32::consts::PI;
+
+use crate::settings::Sampler;
 
 /// Fixed dimensions of a sample: each use of a random number has its own.
 ///
@@ -71,44 +106,192 @@ fn mix64(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
+/// Odd constants that spread small integers over 64 bits before hashing.
+const SAMPLE_SPREAD: u64 = 0x9e37_79b9_7f4a_7c15;
+const DIMENSION_SPREAD: u64 = 0xd1b5_4a32_d192_ed03;
+
+/// The hash of (key, dimension): what the numbers of one dimension hang on.
+#[inline]
+fn dimension_key(key: u64, dimension: u32) -> u64 {
+    mix64(key ^ (dimension as u64 + 1).wrapping_mul(DIMENSION_SPREAD))
+}
+
+/// `bits` in [0, 2²⁴) as a number in [0, 1): exact, never 1.0.
+#[inline]
+fn unit_from_24_bits(bits: u64) -> f32 {
+    bits as f32 * (1.0 / (1u64 << 24) as f32)
+}
+
+/// Sample indices per block of the stratified sampler; a power of two.
+pub const STRATIFIED_BLOCK: u64 = 16;
+/// Side of the stratified sampler's 2D grid: `STRATIFIED_GRID²` = [`STRATIFIED_BLOCK`].
+pub const STRATIFIED_GRID: u32 = 4;
+/// Sample indices of one Owen-scrambled Sobol sequence (the crate's limit);
+/// later indices continue in a sequence of another scramble.
+const SOBOL_SEQUENCE_LENGTH: u64 = 1 << 16;
+
 /// The random numbers of one sample of one pixel.
 #[derive(Clone, Copy, Debug)]
 pub struct SampleStream {
+    sampler: Sampler,
+    /// Independent: the hash of (seed, pixel, sample, splits). Others: the
+    /// hash of (seed, pixel), which scrambles the pixel's points.
     key: u64,
+    /// Others than independent: the sample index, splits folded in (n·N + j).
+    index: u64,
 }
 
 impl SampleStream {
+    /// Sample `sample` of pixel `pixel`, with independent numbers.
     pub fn new(seed: u64, pixel: u64, sample: u64) -> Self {
-        let key = mix64(mix64(seed ^ 0x5851_f42d_4c95_7f2d) ^ pixel);
-        Self {
-            key: mix64(key ^ sample.wrapping_mul(0x9e37_79b9_7f4a_7c15)),
+        Self::with_sampler(Sampler::Independent, seed, pixel, sample)
+    }
+
+    /// Sample `sample` of pixel `pixel`, with the numbers of `sampler`.
+    pub fn with_sampler(sampler: Sampler, seed: u64, pixel: u64, sample: u64) -> Self {
+        let pixel_key = mix64(mix64(seed ^ 0x5851_f42d_4c95_7f2d) ^ pixel);
+        match sampler {
+            Sampler::Independent => Self {
+                sampler,
+                key: mix64(pixel_key ^ sample.wrapping_mul(SAMPLE_SPREAD)),
+                index: 0,
+            },
+            Sampler::Stratified | Sampler::Sobol => Self {
+                sampler,
+                key: pixel_key,
+                index: sample,
+            },
         }
+    }
+
+    pub fn sampler(&self) -> Sampler {
+        self.sampler
     }
 
     /// The stream of repetition `index` of `count` within this sample (the
     /// j-th light sample, the m-th continuation); repetition 0 of 1 is `self`.
+    ///
+    /// Stratified and Sobol read repetition j of sample n as sample n·N + j,
+    /// so the N repetitions are N consecutive points of the same dimensions.
     pub fn split(&self, index: u32, count: u32) -> SampleStream {
         if count <= 1 {
             return *self;
         }
-        Self {
-            key: mix64(self.key ^ mix64((index as u64) << 32 | count as u64)),
+        match self.sampler {
+            Sampler::Independent => Self {
+                key: mix64(self.key ^ mix64((index as u64) << 32 | count as u64)),
+                ..*self
+            },
+            Sampler::Stratified | Sampler::Sobol => Self {
+                index: self
+                    .index
+                    .wrapping_mul(count as u64)
+                    .wrapping_add(index as u64),
+                ..*self
+            },
         }
     }
 
     /// A number in [0, 1) for dimension `dimension`.
     #[inline]
     pub fn uniform(&self, dimension: u32) -> f32 {
-        let bits = mix64(self.key ^ (dimension as u64 + 1).wrapping_mul(0xd1b5_4a32_d192_ed03));
-        // 24 random bits: every value exactly representable, never 1.0
-        (bits >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
+        match self.sampler {
+            Sampler::Independent => self.independent(dimension),
+            Sampler::Stratified => self.stratified(dimension),
+            Sampler::Sobol => self.sobol(dimension),
+        }
     }
 
-    /// A point in [0, 1)² from dimensions `dimension` and `dimension + 1`.
+    /// A point in [0, 1)² for the dimension pair `dimension`, `dimension + 1`:
+    /// (`uniform(dimension)`, `uniform(dimension + 1)`), except for the
+    /// stratified sampler, whose pairs stratify a grid jointly (so a dimension
+    /// is read either alone or as part of one pair, never both).
     #[inline]
     pub fn uniform2(&self, dimension: u32) -> Vec2 {
-        Vec2::new(self.uniform(dimension), self.uniform(dimension + 1))
+        match self.sampler {
+            Sampler::Independent => {
+                Vec2::new(self.independent(dimension), self.independent(dimension + 1))
+            }
+            Sampler::Stratified => self.stratified2(dimension),
+            Sampler::Sobol => Vec2::new(self.sobol(dimension), self.sobol(dimension + 1)),
+        }
     }
+
+    #[inline]
+    fn independent(&self, dimension: u32) -> f32 {
+        // 24 random bits: every value exactly representable, never 1.0
+        unit_from_24_bits(dimension_key(self.key, dimension) >> 40)
+    }
+
+    /// Which of the [`STRATIFIED_BLOCK`] strata this sample takes in its block,
+    /// and 64 bits of jitter.
+    #[inline]
+    fn stratum_and_jitter(&self, dimension: u32) -> (u32, u64) {
+        let key = dimension_key(self.key, dimension);
+        let block = self.index / STRATIFIED_BLOCK;
+        let slot = (self.index % STRATIFIED_BLOCK) as u32;
+        let shuffle = mix64(key ^ block.wrapping_mul(SAMPLE_SPREAD));
+        // a permutation of the slots, then a random xor: whatever the
+        // permutation, each slot lands in each stratum with probability 1/16
+        let stratum = permute_16(slot, shuffle as u32) ^ (shuffle >> 60) as u32;
+        let jitter = mix64(key ^ mix64(self.index));
+        (stratum, jitter)
+    }
+
+    /// Stratum of 1/16 of [0, 1), jittered.
+    #[inline]
+    fn stratified(&self, dimension: u32) -> f32 {
+        let (stratum, jitter) = self.stratum_and_jitter(dimension);
+        unit_from_24_bits((stratum as u64) << 20 | jitter >> 44)
+    }
+
+    /// Cell of the 4×4 grid, jittered.
+    #[inline]
+    fn stratified2(&self, dimension: u32) -> Vec2 {
+        let (stratum, jitter) = self.stratum_and_jitter(dimension);
+        let (column, row) = (stratum % STRATIFIED_GRID, stratum / STRATIFIED_GRID);
+        let low_22 = (1u64 << 22) - 1;
+        Vec2::new(
+            unit_from_24_bits((column as u64) << 22 | jitter >> 42),
+            unit_from_24_bits((row as u64) << 22 | jitter & low_22),
+        )
+    }
+
+    /// Dimension `dimension` of this sample's point in the pixel's
+    /// Owen-scrambled Sobol sequence; beyond the tables, an independent number.
+    #[inline]
+    fn sobol(&self, dimension: u32) -> f32 {
+        if dimension >= sobol_burley::NUM_DIMENSIONS {
+            return unit_from_24_bits(mix64(dimension_key(self.key, dimension) ^ self.index) >> 40);
+        }
+        let sequence = self.index / SOBOL_SEQUENCE_LENGTH;
+        let point = (self.index % SOBOL_SEQUENCE_LENGTH) as u32;
+        let scramble = mix64(self.key ^ sequence.wrapping_mul(SAMPLE_SPREAD)) as u32;
+        sobol_burley::sample(point, dimension, scramble)
+    }
+}
+
+/// A permutation of 0..16 chosen by `seed` (Kensler 2013, "Correlated
+/// Multi-Jittered Sampling", for a power-of-two length): each step is
+/// invertible on the low four bits.
+#[inline]
+fn permute_16(mut i: u32, seed: u32) -> u32 {
+    const MASK: u32 = 15;
+    i ^= seed;
+    i = i.wrapping_mul(0xe170_893d);
+    i ^= seed >> 16;
+    i ^= seed >> 8;
+    i = i.wrapping_mul(0x0929_eb3f);
+    i ^= seed >> 23;
+    i ^= (i & MASK) >> 1;
+    i = i.wrapping_mul(1 | seed >> 27);
+    i = i.wrapping_mul(0x6935_fa69);
+    i = i.wrapping_mul(0x74dc_b303);
+    i ^= (i & MASK) >> 2;
+    i = i.wrapping_mul(0x9e50_1cc3);
+    i ^= (i & MASK) >> 2;
+    i = i.wrapping_mul(0xc860_a3df);
+    (i.wrapping_add(seed)) & MASK
 }
 
 /// Cosine-weighted direction on the hemisphere z ≥ 0 (Malley: a uniform disk point lifted).
@@ -146,8 +329,11 @@ pub const UNIFORM_SPHERE_PDF: f32 = 1.0 / (4.0 * PI);
 /// Uniform direction inside the cone of half-angle θmax around +z, given
 /// 1 − cos θmax (passed as such: it is tiny for small cones and 1 − cos loses it).
 pub fn uniform_cone(u: Vec2, one_minus_cos_max: f32) -> Vec3 {
-    let cos_theta = 1.0 - u.x * one_minus_cos_max;
-    let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
+    let one_minus_cos = u.x * one_minus_cos_max;
+    let cos_theta = 1.0 - one_minus_cos;
+    // sin²θ = (1 − cos θ)(1 + cos θ): exact for tiny cones, where 1 − cos²θ
+    // would leave sin θ only a handful of values
+    let sin_theta = (one_minus_cos * (2.0 - one_minus_cos)).max(0.0).sqrt();
     let phi = 2.0 * PI * u.y;
     Vec3::new(sin_theta * phi.cos(), sin_theta * phi.sin(), cos_theta)
 }
