@@ -21,7 +21,7 @@ fn harness() -> Harness<'static, LumiereApp> {
         ..ViewOptions::default()
     };
     let mut harness = Harness::builder()
-        .with_size([1100.0, 760.0])
+        .with_size([1100.0, 1000.0])
         .wgpu()
         .build_eframe(|cc| LumiereApp::new(cc, options).expect("the Cornell box loads"));
     harness.run_steps(2);
