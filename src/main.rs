@@ -168,6 +168,21 @@ struct ViewArgs {
     /// Measure the time from a toggle to the preview on screen and the UI frame time, print them, exit.
     #[arg(long, conflicts_with_all = ["exit_after_spp", "screenshot"])]
     bench: bool,
+    /// A linear EXR of the starting view (same size): RMSE and relMSE are measured against it.
+    #[arg(long)]
+    reference: Option<PathBuf>,
+    /// Open the convergence plot (error against spp and seconds).
+    #[arg(long)]
+    convergence_plot: bool,
+    /// Compare, for equal time, with a second estimator using this light sampling.
+    #[arg(long)]
+    compare_light_sampling: Option<LightSampling>,
+    /// The second estimator's indirect sampling (default: the first's).
+    #[arg(long)]
+    compare_indirect_sampling: Option<IndirectSampling>,
+    /// The second estimator's sampler (default: the first's).
+    #[arg(long)]
+    compare_sampler: Option<Sampler>,
     #[command(flatten)]
     options: SceneOptions,
 }
@@ -422,6 +437,20 @@ fn run_view(args: ViewArgs, restore: bool) -> Result<(), Failure> {
     let settings = args.options.settings();
     settings.validate().map_err(|e| usage(anyhow::anyhow!(e)))?;
     check_memory(settings.width, settings.height).map_err(usage)?;
+    let comparing = args.compare_light_sampling.is_some()
+        || args.compare_indirect_sampling.is_some()
+        || args.compare_sampler.is_some();
+    let compare = comparing.then(|| {
+        let mut estimator = lumiere::convergence::EstimatorKey::of(&settings);
+        estimator.light_sampling = args
+            .compare_light_sampling
+            .unwrap_or(estimator.light_sampling);
+        estimator.indirect_sampling = args
+            .compare_indirect_sampling
+            .unwrap_or(estimator.indirect_sampling);
+        estimator.sampler = args.compare_sampler.unwrap_or(estimator.sampler);
+        estimator
+    });
     let options = lumiere::app::ViewOptions {
         scene: args.scene,
         settings,
@@ -430,6 +459,9 @@ fn run_view(args: ViewArgs, restore: bool) -> Result<(), Failure> {
         screenshot: args.screenshot,
         restore,
         bench: args.bench,
+        reference: args.reference,
+        compare,
+        convergence_plot: args.convergence_plot,
     };
     lumiere::app::run(options).map_err(|e| runtime(anyhow::anyhow!(e)))
 }

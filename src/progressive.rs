@@ -16,10 +16,12 @@
 //! * pause and "stop at N spp" only start or stop the passes.
 //!
 //! The worker knows nothing of the GUI: it calls a `repaint` closure after
-//! each publication.
+//! each publication. It renders on rayon's global pool (all cores), or on a
+//! pool of its own when given a thread count, so that two workers can share
+//! the machine equally (the viewer's equal-time comparison).
 
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Condvar, Mutex, MutexGuard};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard, Weak};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -40,6 +42,16 @@ pub struct ViewRequest {
     pub paused: bool,
     /// Stop adding samples once every visible term has this many per pixel.
     pub stop_at_spp: Option<u32>,
+}
+
+/// What an image shows: which scene, from where, with which settings.
+#[derive(Clone, Debug)]
+pub struct ImageSource {
+    /// The scene rendered (weak: an image does not keep an old scene alive).
+    pub scene: Weak<Scene>,
+    pub camera: Camera,
+    /// The settings rendered with; `terms` are the terms the image sums.
+    pub settings: RenderSettings,
 }
 
 /// What the worker last finished: the image of the visible terms and its statistics.
@@ -67,6 +79,8 @@ pub struct Snapshot {
     pub pixel_samples: u64,
     /// No more passes will run until the request changes (paused or reached the stop).
     pub idle: bool,
+    /// What the image shows (`None` before the first publication).
+    pub source: Option<ImageSource>,
 }
 
 impl Snapshot {
@@ -120,6 +134,16 @@ fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
 impl ProgressiveRenderer {
     /// Starts the worker on `request`; `repaint` is called after each publication.
     pub fn spawn(request: ViewRequest, repaint: impl Fn() + Send + 'static) -> Self {
+        Self::spawn_with_threads(request, None, repaint)
+    }
+
+    /// [`spawn`](Self::spawn) on a pool of `threads` threads of its own
+    /// (`None`: rayon's global pool, all cores).
+    pub fn spawn_with_threads(
+        request: ViewRequest,
+        threads: Option<usize>,
+        repaint: impl Fn() + Send + 'static,
+    ) -> Self {
         let shared = Arc::new(Shared {
             mailbox: Mutex::new(Mailbox {
                 request: Some(request),
@@ -133,7 +157,18 @@ impl ProgressiveRenderer {
         let worker_shared = Arc::clone(&shared);
         let thread = std::thread::Builder::new()
             .name("lumiere render".into())
-            .spawn(move || Worker::new(worker_shared, Box::new(repaint)).run())
+            .spawn(move || {
+                let worker = Worker::new(worker_shared, Box::new(repaint));
+                match threads {
+                    None => worker.run(),
+                    Some(threads) => rayon::ThreadPoolBuilder::new()
+                        .num_threads(threads.max(1))
+                        .thread_name(|i| format!("lumiere render {i}"))
+                        .build()
+                        .expect("cannot start the render threads")
+                        .install(|| worker.run()),
+                }
+            })
             .expect("cannot start the render thread");
         Self {
             shared,
@@ -396,6 +431,11 @@ impl Worker {
             rays: current.rays,
             pixel_samples: current.pixel_samples,
             idle,
+            source: Some(ImageSource {
+                scene: Arc::downgrade(&current.request.scene),
+                camera: current.request.camera.clone(),
+                settings: current.request.settings.clone(),
+            }),
         };
         *lock(&self.shared.snapshot) = Arc::new(snapshot);
         (self.repaint)();

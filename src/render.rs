@@ -106,8 +106,21 @@ pub fn render(
     context: &RenderContext,
     film: &mut Film,
     budget: Budget,
-    mut progress: impl FnMut(&RenderStats),
+    progress: impl FnMut(&RenderStats),
 ) -> RenderStats {
+    render_cancellable(context, film, budget, &AtomicBool::new(false), progress)
+        .expect("a render that cannot be cancelled completes")
+}
+
+/// [`render`] that gives up once `cancel` is set (checked between tiles):
+/// `None` if it was cancelled, the film then holding the passes completed.
+pub fn render_cancellable(
+    context: &RenderContext,
+    film: &mut Film,
+    budget: Budget,
+    cancel: &AtomicBool,
+    mut progress: impl FnMut(&RenderStats),
+) -> Option<RenderStats> {
     let start = Instant::now();
     let mut stats = RenderStats::default();
     let mut buffer = PassBuffer::default();
@@ -118,12 +131,13 @@ pub fn render(
         .min()
         .unwrap_or(0);
     loop {
-        let counts = render_pass(
+        let counts = render_pass_cancellable(
             context,
             film,
             first_pass + stats.samples_per_pixel,
             &mut buffer,
-        );
+            cancel,
+        )?;
         stats.rays.add(&counts);
         stats.samples_per_pixel += 1;
         stats.elapsed = start.elapsed();
@@ -133,7 +147,7 @@ pub fn render(
             Budget::Time(limit) => stats.elapsed >= limit,
         };
         if done {
-            return stats;
+            return Some(stats);
         }
     }
 }

@@ -6,10 +6,13 @@
 //! (eframe storage); runtime handles (worker, scene) do not.
 
 mod bench;
+mod convergence;
 pub mod display;
 mod export;
 mod interact;
 mod panels;
+pub mod reference;
+pub mod split;
 
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
@@ -17,6 +20,8 @@ use std::sync::{Arc, Mutex};
 use eframe::egui;
 use serde::{Deserialize, Serialize};
 
+use crate::convergence::EstimatorKey;
+use crate::metrics::ReferenceImage;
 use crate::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
 use crate::scene::{Camera, Scene, builtin};
 use crate::settings::{DisplaySettings, RenderSettings};
@@ -35,6 +40,12 @@ pub struct ViewOptions {
     pub restore: bool,
     /// Measure toggle-to-preview latency and UI frame times, print them and exit.
     pub bench: bool,
+    /// An EXR of the starting view to measure the error against.
+    pub reference: Option<PathBuf>,
+    /// Compare with this second estimator from the start.
+    pub compare: Option<EstimatorKey>,
+    /// Open the convergence plot.
+    pub convergence_plot: bool,
 }
 
 impl Default for ViewOptions {
@@ -47,6 +58,9 @@ impl Default for ViewOptions {
             screenshot: None,
             restore: false,
             bench: false,
+            reference: None,
+            compare: None,
+            convergence_plot: false,
         }
     }
 }
@@ -112,6 +126,15 @@ pub struct LumiereApp {
     /// Offset of the zoomed image from the centre, in points.
     pub pan: egui::Vec2,
     exports: Vec<std::thread::JoinHandle<Result<String, String>>>,
+    /// The converged image errors are measured against (and differences drawn from).
+    pub reference: Option<Arc<ReferenceImage>>,
+    /// What the reference is valid for, its capture, the errors and curves.
+    pub errors: reference::ErrorTracking,
+    /// The equal-time comparison with a second estimator.
+    pub compare: split::Compare,
+    /// Number of the worker now rendering A (each spawn takes the next).
+    renderer_serial: u64,
+    spawned: u64,
 }
 
 impl LumiereApp {
@@ -144,7 +167,7 @@ impl LumiereApp {
             stop_at_spp: options.exit_after_spp.or(state.stop_at_spp),
         };
         let renderer = ProgressiveRenderer::spawn(request.clone(), move || ctx.request_repaint());
-        Ok(Self {
+        let mut app = Self {
             message: scene.warnings.first().map(|w| format!("warning: {w}")),
             state,
             scene_field: options.scene.clone(),
@@ -167,7 +190,41 @@ impl LumiereApp {
             zoom: None,
             pan: egui::Vec2::ZERO,
             exports: Vec::new(),
-        })
+            reference: None,
+            errors: reference::ErrorTracking::default(),
+            compare: split::Compare::default(),
+            renderer_serial: 1,
+            spawned: 1,
+        };
+        app.errors.show_plot = options.convergence_plot;
+        if let Some(estimator) = options.compare {
+            // B and the one-thread A start with the first frame (split::sync)
+            app.compare.enabled = true;
+            app.compare.estimator = estimator;
+        }
+        if let Some(path) = &options.reference {
+            reference::load_reference_exr(&mut app, &path.to_string_lossy())?;
+        }
+        Ok(app)
+    }
+
+    /// A number for the next worker spawned, to tell their snapshots apart.
+    fn next_renderer_serial(&mut self) -> u64 {
+        self.spawned += 1;
+        self.spawned
+    }
+
+    /// Replaces A's worker by a new one on the current request (an empty film),
+    /// on `threads` threads of its own or on all cores.
+    fn respawn_renderer(&mut self, ctx: &egui::Context, threads: Option<usize>) {
+        let request = self.view_request();
+        let repaint = ctx.clone();
+        self.renderer =
+            ProgressiveRenderer::spawn_with_threads(request.clone(), threads, move || {
+                repaint.request_repaint()
+            });
+        self.sent = request;
+        self.renderer_serial = self.next_renderer_serial();
     }
 
     /// What the worker should render, from the current controls.
@@ -176,7 +233,8 @@ impl LumiereApp {
             scene: Arc::clone(&self.scene),
             settings: self.state.settings.clone(),
             camera: self.camera.clone(),
-            paused: self.paused,
+            // a reference capture gets the cores to itself
+            paused: self.paused || self.errors.capturing(),
             stop_at_spp: self.exit_after_spp.or(self.state.stop_at_spp),
         }
     }
@@ -184,12 +242,7 @@ impl LumiereApp {
     /// Sends the current request if a control changed it.
     fn sync_renderer(&mut self) {
         let request = self.view_request();
-        let same = Arc::ptr_eq(&request.scene, &self.sent.scene)
-            && request.settings == self.sent.settings
-            && request.camera == self.sent.camera
-            && request.paused == self.sent.paused
-            && request.stop_at_spp == self.sent.stop_at_spp;
-        if !same {
+        if !same_request(&request, &self.sent) {
             self.renderer.request(request.clone());
             self.sent = request;
         }
@@ -229,7 +282,7 @@ impl LumiereApp {
         let Some(target) = self.exit_after_spp else {
             return;
         };
-        if snapshot.preview || snapshot.samples_per_pixel() < target {
+        if snapshot.preview || snapshot.samples_per_pixel() < target || !split::settled(self) {
             return;
         }
         let Some(path) = self.screenshot.clone() else {
@@ -371,11 +424,21 @@ impl eframe::App for LumiereApp {
         self.collect_exports();
         panels::shortcuts(self, &ctx);
         let snapshot = self.snapshot();
+        reference::poll_capture(self);
+        let serial = self.renderer_serial;
+        reference::measure(self, reference::Side::A, serial, &snapshot);
+        if let Some(b) = self.compare.snapshot() {
+            let serial = self.compare.serial;
+            reference::measure(self, reference::Side::B, serial, &b);
+        }
         panels::status_bar(self, ui, &snapshot);
         panels::side_panel(self, ui);
-        self.image_rect = Some(panels::viewport(self, ui, &snapshot));
+        let shown = split::shown_snapshot(self, &snapshot);
+        self.image_rect = Some(panels::viewport(self, ui, &shown));
+        convergence::plot_window(self, &ctx);
         self.bench_step(&ctx, &snapshot, started);
         self.sync_renderer();
+        split::sync(self, &ctx);
         self.script_exit(&ctx, &snapshot);
     }
 
@@ -385,6 +448,15 @@ impl eframe::App for LumiereApp {
             eframe::set_value(storage, STORAGE_KEY, &self.state);
         }
     }
+}
+
+/// Whether two requests ask the worker for the same thing.
+fn same_request(a: &ViewRequest, b: &ViewRequest) -> bool {
+    Arc::ptr_eq(&a.scene, &b.scene)
+        && a.settings == b.settings
+        && a.camera == b.camera
+        && a.paused == b.paused
+        && a.stop_at_spp == b.stop_at_spp
 }
 
 /// Opens the viewer window and runs until it is closed.

@@ -4,7 +4,7 @@
 
 use eframe::egui;
 
-use super::{LumiereApp, display, interact};
+use super::{LumiereApp, display, interact, reference, split};
 use crate::progressive::Snapshot;
 use crate::settings::{
     BrdfOverride, IndirectSampling, LightMode, LightSampling, LightSelection,
@@ -131,6 +131,8 @@ pub fn side_panel(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 display_ui(app, ui);
                 render_ui(app, ui);
                 scene_ui(app, ui);
+                reference::error_ui(app, ui);
+                split::compare_ui(app, ui);
             });
         });
 }
@@ -526,6 +528,7 @@ pub fn viewport(
             if !snapshot.radiance.is_empty() {
                 display::paint_image(ui, rect, std::sync::Arc::clone(snapshot), app.state.display);
             }
+            split::overlay_ui(app, ui, rect);
             rect
         })
         .inner

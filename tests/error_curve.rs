@@ -1,0 +1,107 @@
+//! Error against a reference: the capture job renders what `render` renders,
+//! a reference is valid for the radiance settings and not the estimator, and
+//! the RMSE of a Monte Carlo render falls as N^(−1/2).
+
+mod common;
+
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+
+use lumiere::capture::{ReferenceCapture, ReferenceJob, ReferenceKey, reference_seed};
+use lumiere::convergence::log_log_slope;
+use lumiere::metrics::image_error;
+use lumiere::render::{Budget, render};
+use lumiere::scene::builtin;
+use lumiere::settings::{LightSampling, Sampler};
+use lumiere::{Film, RenderContext, Term, TermSet};
+
+use common::{render_film, small};
+
+#[test]
+fn the_capture_job_renders_what_render_renders() {
+    let scene = Arc::new(builtin::cornell());
+    let settings = small(24, 18, TermSet::COURSE);
+    let job = ReferenceJob::new(Arc::clone(&scene), scene.default_camera(), &settings, 8);
+    assert_eq!(job.settings.seed, reference_seed(settings.seed));
+    assert_ne!(
+        job.settings.seed, settings.seed,
+        "a reference has a seed of its own"
+    );
+
+    let mut progress = Vec::new();
+    let image = job
+        .run(&AtomicBool::new(false), |spp| progress.push(spp))
+        .expect("not cancelled");
+    assert_eq!(progress, (1..=8).collect::<Vec<u32>>());
+    let film = render_film(builtin::cornell(), &job.settings, 8);
+    assert_eq!((image.width, image.height), (24, 18));
+    assert_eq!(image.radiance, film.radiance(settings.terms));
+
+    // on its own thread: the same image, and the key of the view it was made for
+    let capture = ReferenceCapture::spawn(job.clone(), || {});
+    let (threaded, key) = capture.join().expect("not cancelled");
+    assert_eq!(threaded.radiance, image.radiance);
+    assert!(key.matches(&Arc::downgrade(&scene), &scene.default_camera(), &settings));
+
+    // cancelled before the first pass: nothing
+    assert!(job.run(&AtomicBool::new(true), |_| {}).is_none());
+}
+
+#[test]
+fn a_reference_is_valid_for_the_radiance_not_the_estimator() {
+    let scene = Arc::new(builtin::cornell());
+    let camera = scene.default_camera();
+    let settings = small(24, 18, TermSet::COURSE);
+    let key = ReferenceKey::new(&scene, &camera, &settings);
+    let weak = Arc::downgrade(&scene);
+
+    let mut other_estimator = settings.clone();
+    other_estimator.light_sampling = LightSampling::Area;
+    other_estimator.sampler = Sampler::Sobol;
+    other_estimator.light_samples = 4;
+    other_estimator.seed = 7;
+    assert!(key.matches(&weak, &camera, &other_estimator));
+
+    let other_terms = small(24, 18, TermSet::only(Term::L1));
+    assert!(!key.matches(&weak, &camera, &other_terms));
+    let other_size = small(24, 20, TermSet::COURSE);
+    assert!(!key.matches(&weak, &camera, &other_size));
+    let mut other_bounces = settings.clone();
+    other_bounces.max_bounces = 2;
+    assert!(!key.matches(&weak, &camera, &other_bounces));
+    // an equal but distinct scene object (an edit makes a new one)
+    let copy = Arc::new(builtin::cornell());
+    assert!(!key.matches(&Arc::downgrade(&copy), &camera, &settings));
+    let mut moved = camera.clone();
+    moved.world_from_camera.translation.x += 0.1;
+    assert!(!key.matches(&weak, &moved, &settings));
+}
+
+#[test]
+fn rmse_falls_with_slope_minus_one_half() {
+    // direct lighting: light sampling of the area light has light tails, so
+    // four points fix the slope to a few hundredths (L2's rare bright paths
+    // would move it by ±0.2 from seed to seed at these sample counts)
+    let scene = Arc::new(builtin::cornell());
+    let settings = small(32, 24, TermSet::only(Term::L1));
+    // reference noise adds σ²/M to every MSE: M = 2048 flattens the slope by about 0.02
+    let reference = ReferenceJob::new(Arc::clone(&scene), scene.default_camera(), &settings, 2048)
+        .run(&AtomicBool::new(false), |_| {})
+        .unwrap();
+
+    let context = RenderContext::new(Arc::clone(&scene), settings.clone());
+    let mut film = Film::new(settings.width, settings.height);
+    let mut points = Vec::new();
+    let mut spp = 0;
+    for target in [4u32, 16, 64, 256] {
+        render(&context, &mut film, Budget::Samples(target - spp), |_| {});
+        spp = target;
+        let error = image_error(&film.radiance(settings.terms), &reference.radiance).unwrap();
+        points.push((spp as f64, error.rmse));
+    }
+    let slope = log_log_slope(points.iter().copied()).unwrap();
+    assert!(
+        (slope + 0.5).abs() <= 0.1,
+        "log-log slope of RMSE {slope:.3}, expected −0.5 ± 0.1 ({points:?})"
+    );
+}

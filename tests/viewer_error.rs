@@ -1,0 +1,196 @@
+//! The viewer's error measurement, driven through its widgets in a headless
+//! egui: a reference captured from the UI, the RMSE readout falling as the
+//! image converges, the convergence curves, and the equal-time comparison.
+#![cfg(feature = "gui")]
+
+use std::time::{Duration, Instant};
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use lumiere::app::{LumiereApp, ViewOptions};
+use lumiere::convergence::EstimatorKey;
+use lumiere::settings::LightSampling;
+use lumiere::{RenderSettings, Term};
+
+fn harness(width: u32, height: u32) -> Harness<'static, LumiereApp> {
+    let options = ViewOptions {
+        settings: RenderSettings {
+            width,
+            height,
+            ..RenderSettings::default()
+        },
+        ..ViewOptions::default()
+    };
+    let mut harness = Harness::builder()
+        .with_size([1200.0, 900.0])
+        .wgpu()
+        .build_eframe(|cc| LumiereApp::new(cc, options).expect("the Cornell box loads"));
+    harness.run_steps(2);
+    harness
+}
+
+/// Steps the UI until `done` holds for the app (60 s at most).
+fn wait_for(
+    harness: &mut Harness<'static, LumiereApp>,
+    what: &str,
+    done: impl Fn(&LumiereApp) -> bool,
+) {
+    let deadline = Instant::now() + Duration::from_secs(60);
+    loop {
+        harness.step();
+        if done(harness.state()) {
+            return;
+        }
+        assert!(Instant::now() < deadline, "timed out waiting for {what}");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+}
+
+/// Clicks "Capture reference" at `spp` and waits for the reference.
+fn capture_reference(harness: &mut Harness<'static, LumiereApp>, spp: u32) {
+    harness.state_mut().errors.capture_spp = spp;
+    if harness.query_by_label("Capture reference").is_none() {
+        harness.get_by_label("Error").click();
+        harness.run_steps(2);
+    }
+    harness.get_by_label("Capture reference").click();
+    harness.run_steps(2);
+    wait_for(harness, "the reference", |app| app.reference.is_some());
+}
+
+/// The error of A's image last measured: (spp, RMSE).
+fn measured_a(app: &LumiereApp) -> Option<(u32, f64)> {
+    app.errors.latest[0].map(|m| (m.point.samples_per_pixel, m.point.error.rmse))
+}
+
+#[test]
+fn a_captured_reference_gives_a_falling_rmse_and_a_growing_curve() {
+    let mut harness = harness(32, 32);
+    capture_reference(&mut harness, 64);
+    let reference = harness.state().reference.clone().unwrap();
+    assert_eq!((reference.width, reference.height), (32, 32));
+    assert!(reference.label.starts_with("64 spp"), "{}", reference.label);
+
+    // from 1 spp again, held at 2 spp
+    harness.state_mut().state.stop_at_spp = Some(2);
+    harness.get_by_label("Restart render").click();
+    wait_for(&mut harness, "the error at 2 spp", |app| {
+        measured_a(app).is_some_and(|(spp, _)| spp == 2)
+    });
+    let (_, early) = measured_a(harness.state()).unwrap();
+    harness.get_by_label_contains("A RMSE");
+    let key = EstimatorKey::of(&harness.state().state.settings);
+    let early_points = harness.state().errors.curves.get(&key).unwrap().len();
+
+    harness.state_mut().state.stop_at_spp = None;
+    wait_for(&mut harness, "the error at 64 spp", |app| {
+        measured_a(app).is_some_and(|(spp, _)| spp >= 64)
+    });
+    let (spp, late) = measured_a(harness.state()).unwrap();
+    // E[MSE] = σ²(1/N + 1/64): from 2 to ≥ 64 spp the RMSE falls to about a quarter
+    assert!(
+        late < 0.5 * early,
+        "RMSE {early:.4} at 2 spp, {late:.4} at {spp} spp"
+    );
+    let curve = harness.state().errors.curves.get(&key).unwrap();
+    assert!(
+        curve.len() > early_points && curve.len() >= 4,
+        "the curve has {} points (had {early_points})",
+        curve.len()
+    );
+    let spps: Vec<u32> = curve.points().map(|p| p.samples_per_pixel).collect();
+    assert!(spps.windows(2).all(|w| w[0] < w[1]), "{spps:?}");
+
+    // the plot window, and its table
+    harness.get_by_label("Convergence plot").click();
+    harness.run_steps(3);
+    harness.get_by_label("Clear curves");
+    harness.get_by_label("efficiency");
+
+    // another set of terms: not what the reference is for
+    harness.get_by_label("L2").click();
+    harness.run_steps(3);
+    assert!(!harness.state().state.settings.terms.contains(Term::L2));
+    wait_for(&mut harness, "the error readout to go", |app| {
+        app.errors.latest[0].is_none()
+    });
+    assert!(
+        harness
+            .query_all_by_label("reference is for other settings")
+            .count()
+            >= 1
+    );
+}
+
+#[test]
+fn compare_shows_a_left_and_b_right_for_equal_time() {
+    let (width, height) = (32, 24);
+    let mut harness = harness(width, height);
+    harness.get_by_label("Comparison").click();
+    harness.run_steps(2);
+    harness.get_by_label("Compare").click();
+    harness.run_steps(2);
+    harness.get_by_label("B light sampling");
+    assert_eq!(
+        harness.state().compare.estimator.light_sampling,
+        LightSampling::Area
+    );
+    wait_for(&mut harness, "both halves rendered", |app| {
+        app.compare.composite().is_some_and(|c| {
+            !c.a.preview
+                && !c.b.preview
+                && c.a.samples_per_pixel() >= 2
+                && c.b.samples_per_pixel() >= 2
+        })
+    });
+    assert_eq!(harness.get_all_by_label_contains("A · mis·").count(), 1);
+    assert_eq!(harness.get_all_by_label_contains("B · area·").count(), 1);
+
+    let composite = harness.state().compare.composite().unwrap().clone();
+    let (a, b, image) = (&composite.a, &composite.b, &composite.image);
+    assert_eq!(composite.divider_column, width / 2);
+    assert_eq!((image.width, image.height), (width, height));
+    let b_settings = &b.source.as_ref().unwrap().settings;
+    assert_eq!(b_settings.light_sampling, LightSampling::Area);
+    assert_ne!(b_settings.seed, a.source.as_ref().unwrap().settings.seed);
+    let (mut left_differs, mut right_differs) = (false, false);
+    for y in 0..height as usize {
+        for x in 0..width as usize {
+            let i = y * width as usize + x;
+            let from = if x < width as usize / 2 { a } else { b };
+            assert_eq!(image.radiance[i], from.radiance[i], "pixel {x},{y}");
+            if a.radiance[i] != b.radiance[i] {
+                if x < width as usize / 2 {
+                    left_differs = true;
+                } else {
+                    right_differs = true;
+                }
+            }
+        }
+    }
+    assert!(
+        left_differs && right_differs,
+        "A and B render the same image"
+    );
+
+    // with a reference both are measured, each on its own curve
+    capture_reference(&mut harness, 16);
+    wait_for(&mut harness, "both errors", |app| {
+        app.errors.latest.iter().all(Option::is_some) && app.errors.curves.iter().count() == 2
+    });
+    assert_eq!(harness.get_all_by_label_contains(" RMSE ").count(), 2);
+
+    // the divider moves the seam
+    harness.state_mut().compare.divider = 0.25;
+    wait_for(&mut harness, "the seam at a quarter", |app| {
+        app.compare
+            .composite()
+            .is_some_and(|c| c.divider_column == width / 4)
+    });
+
+    // and off again: A alone, on every core
+    harness.get_by_label("Compare").click();
+    harness.run_steps(3);
+    assert!(harness.state().compare.composite().is_none());
+    assert!(harness.state().compare.snapshot().is_none());
+}
