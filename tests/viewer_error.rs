@@ -22,7 +22,7 @@ fn harness(width: u32, height: u32) -> Harness<'static, LumiereApp> {
         ..ViewOptions::default()
     };
     let mut harness = Harness::builder()
-        .with_size([1200.0, 900.0])
+        .with_size([1200.0, 1400.0])
         .wgpu()
         .build_eframe(|cc| LumiereApp::new(cc, options).expect("the Cornell box loads"));
     harness.run_steps(2);
