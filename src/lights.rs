@@ -6,20 +6,29 @@
 //! L_direct(p, ωo) = ∫ L_e(q, −ω) f_r(p, ω → ωo) |cos θ| dω
 //! ```
 //!
-//! is estimated by drawing one light (probability ∝ power, alias table) and
-//! one point or direction on it; a [`LightSample`] carries the incident
-//! radiance `L_i` and the solid-angle density `pdf` (selection included), so
-//! the estimate is `f_r · L_i · cos θ / pdf`. Point, spot and directional
-//! lights are Diracs: `L_i` is I/d² (or E) and `pdf` is the selection
-//! probability alone.
+//! is estimated by drawing one light with probability P_sel (alias table:
+//! `light_selection power`, P_sel ∝ emitted power; `uniform`, P_sel = 1/n
+//! over the n lights that emit) and one point or direction on it; a
+//! [`LightSample`] carries the incident radiance `L_i` and the solid-angle
+//! density `pdf` (selection included), so the estimate is
+//! `f_r · L_i · cos θ / pdf`. Point, spot and directional lights are Diracs:
+//! `L_i` is I/d² (or E) and `pdf` is the selection probability alone.
 //!
 //! | light | sampled | L_i | pdf (solid angle) |
 //! |---|---|---|---|
-//! | emissive triangle | area, uniform | L_e(q, −ω) | P_sel · d² / (A · cos θ_q) |
+//! | emissive triangle, `area` | uniform point q on the triangle | L_e(q, −ω) | P_sel · d² / (A · cos θ_q) |
+//! | emissive triangle, `solid-angle` | uniform direction in the Ω it subtends (Arvo) | L_e(q, −ω) | P_sel / Ω |
 //! | sphere (radius r) | cone of directions it subtends | I(−ω) / (π r²) | P_sel / (2π (1 − cos θ_max)) |
 //! | point, spot | — | I(−ω) / d² | P_sel (Dirac) |
 //! | cosine point (area light collapsed) | — | L_e A max(0, n·(−ω)) / d² | P_sel (Dirac) |
 //! | directional | — | E | P_sel (Dirac) |
+//!
+//! Solid-angle sampling falls back to area sampling where Ω is outside
+//! [`SOLID_ANGLE_RANGE`] (tiny: rounding; near 2π: the point is almost on
+//! the triangle's plane). MIS asks for the density of a point found by a
+//! ray ([`LightTable::pdf_triangle`], [`LightTable::sphere_emission`]): it is
+//! the density of whichever routine the table uses at that point, so the
+//! weights of the two strategies sum to one.
 //!
 //! The course's swap keeps power: an area light of radiance L_e and area A
 //! (Φ = π A L_e) becomes a point at its centroid with intensity

@@ -1,0 +1,813 @@
+//! The sampling strategies of the integrator: every direct-lighting strategy
+//! and every continuation distribution estimates the same closed forms, they
+//! agree with each other on the Cornell box, they differ in noise as the
+//! course says, and the spherical triangle sampler draws what its pdf says.
+
+mod common;
+
+use std::sync::Arc;
+
+use common::{assert_agrees, mean_and_error, small};
+use glam::{DVec3, Vec2, Vec3};
+use lumiere::geometry::Ray;
+use lumiere::integrator::{PathLog, RayCounts, RenderContext, SegmentKind};
+use lumiere::sampling::{SampleStream, spherical_triangle, spherical_triangle_area};
+use lumiere::scene::builtin::{self, furnace, point_in_sphere};
+use lumiere::scene::{Material, PunctualKind, PunctualLight, Scene};
+use lumiere::settings::{IndirectSampling, LightSampling, LightSelection, MisHeuristic};
+use lumiere::{Film, LightMode, RenderSettings, Term, TermSet};
+
+const ALBEDO: f32 = 0.5;
+const RADIANCE: f32 = 4.0;
+const HALF_SIDE: f32 = 0.25;
+
+// ── scenes and closed forms ───────────────────────────────────────────
+
+/// Corners of a square light centred at `center`, facing −z (counter-clockwise seen from below).
+fn light_corners(center: Vec3) -> [Vec3; 4] {
+    let h = HALF_SIDE;
+    [
+        center + Vec3::new(-h, -h, 0.0),
+        center + Vec3::new(-h, h, 0.0),
+        center + Vec3::new(h, h, 0.0),
+        center + Vec3::new(h, -h, 0.0),
+    ]
+}
+
+/// A Lambert plane z = 0 (albedo ALBEDO, 40 m wide) under square lights of
+/// the given (centre, radiance).
+fn plane_under_lights(lights: &[(Vec3, f32)]) -> Scene {
+    let mut scene = Scene::default();
+    let floor = scene.add_material(Material::lambert("floor", Vec3::splat(ALBEDO)));
+    let s = 20.0;
+    let plane = [
+        Vec3::new(-s, -s, 0.0),
+        Vec3::new(s, -s, 0.0),
+        Vec3::new(s, s, 0.0),
+        Vec3::new(-s, s, 0.0),
+    ];
+    scene.add_mesh("plane", floor, &plane, &[[0, 1, 2], [0, 2, 3]]);
+    for (i, &(center, radiance)) in lights.iter().enumerate() {
+        let material = scene.add_material(Material::emitter(
+            &format!("light {i}"),
+            Vec3::splat(radiance),
+        ));
+        scene.add_mesh(
+            "light",
+            material,
+            &light_corners(center),
+            &[[0, 1, 2], [0, 2, 3]],
+        );
+    }
+    scene
+}
+
+/// Irradiance at p (normal n) from a Lambertian polygon of radiance L:
+/// E = L/2 · |Σ θᵢ n·(vᵢ × vᵢ₊₁)/|vᵢ × vᵢ₊₁||  (Lambert, 1760).
+fn polygon_irradiance(p: Vec3, n: Vec3, corners: &[Vec3], radiance: f64) -> f64 {
+    let mut sum = 0.0f64;
+    for i in 0..corners.len() {
+        let a = (corners[i] - p).as_dvec3().normalize();
+        let b = (corners[(i + 1) % corners.len()] - p)
+            .as_dvec3()
+            .normalize();
+        let theta = a.dot(b).clamp(-1.0, 1.0).acos();
+        sum += theta * n.as_dvec3().dot(a.cross(b).normalize());
+    }
+    radiance / 2.0 * sum.abs()
+}
+
+/// L1 of floor point (x, y, 0) under square lights of the given (centre, radiance).
+fn floor_l1(x: f32, y: f32, lights: &[(Vec3, f32)]) -> f64 {
+    let p = Vec3::new(x, y, 0.0);
+    lights
+        .iter()
+        .map(|&(c, l)| polygon_irradiance(p, Vec3::Z, &light_corners(c), l as f64))
+        .sum::<f64>()
+        * ALBEDO as f64
+        / std::f64::consts::PI
+}
+
+/// A ray that reaches floor point (x, y, 0) from the side.
+fn ray_to_floor(x: f32, y: f32) -> Ray {
+    let target = Vec3::new(x, y, 0.0);
+    let origin = target + Vec3::new(1.5, 0.3, 0.4);
+    Ray::new(origin, (target - origin).normalize(), f32::INFINITY)
+}
+
+/// Mean and standard error of a term along `ray` over `n` samples.
+fn estimate(context: &RenderContext, ray: Ray, term: Term, n: u64) -> (f64, f64) {
+    let (mut sum, mut sum2) = (0.0f64, 0.0f64);
+    let mut counts = RayCounts::default();
+    for i in 0..n {
+        let stream = SampleStream::new(23, 0, i);
+        let value = context.trace(ray, &stream, &mut counts)[term.index()].x as f64;
+        sum += value;
+        sum2 += value * value;
+    }
+    let mean = sum / n as f64;
+    let variance = (sum2 / n as f64 - mean * mean).max(0.0);
+    (mean, (variance / n as f64).sqrt())
+}
+
+/// Renders a shared scene with `settings` at `spp` samples per pixel.
+fn render_shared(scene: &Arc<Scene>, settings: &RenderSettings, spp: u32) -> Film {
+    let context = RenderContext::new(scene.clone(), settings.clone());
+    let mut film = Film::new(settings.width, settings.height);
+    lumiere::render::render(
+        &context,
+        &mut film,
+        lumiere::render::Budget::Samples(spp),
+        |_| {},
+    );
+    film
+}
+
+/// `base` with the given strategies.
+fn with(
+    base: &RenderSettings,
+    light_sampling: LightSampling,
+    indirect_sampling: IndirectSampling,
+) -> RenderSettings {
+    RenderSettings {
+        light_sampling,
+        indirect_sampling,
+        ..base.clone()
+    }
+}
+
+/// A short name of the strategies of `s`, for messages.
+fn describe(s: &RenderSettings) -> String {
+    format!(
+        "{}/{} {} N={} M={} {}",
+        s.light_sampling,
+        s.indirect_sampling,
+        s.mis_heuristic,
+        s.light_samples,
+        s.indirect_samples,
+        s.light_selection
+    )
+}
+
+/// The strategy sets the tests run: every light strategy with BRDF
+/// continuations, every continuation with MIS, and the MIS variants.
+fn strategy_sets(base: &RenderSettings) -> Vec<RenderSettings> {
+    let mut sets: Vec<RenderSettings> = LightSampling::ALL
+        .iter()
+        .map(|&l| with(base, l, IndirectSampling::Brdf))
+        .collect();
+    for indirect in [IndirectSampling::Uniform, IndirectSampling::Cosine] {
+        sets.push(with(base, LightSampling::Mis, indirect));
+    }
+    sets.push(RenderSettings {
+        mis_heuristic: MisHeuristic::Balance,
+        ..base.clone()
+    });
+    sets
+}
+
+/// `base` with N light samples and M continuations.
+fn repeated(base: &RenderSettings, light_samples: u32, indirect_samples: u32) -> RenderSettings {
+    RenderSettings {
+        light_samples,
+        indirect_samples,
+        ..base.clone()
+    }
+}
+
+// ── closed forms ─────────────────────────────────────────────────────
+
+/// L1 of a square light over a Lambert plane (Lambert's polygon formula),
+/// with every direct-lighting strategy, and with N = 4 light samples.
+#[test]
+fn every_light_strategy_matches_lamberts_polygon_formula() {
+    let lights = [(Vec3::new(0.0, 0.0, 1.0), RADIANCE)];
+    let scene = Arc::new(plane_under_lights(&lights));
+    let base = small(1, 1, TermSet::only(Term::L1));
+    let mut sets = strategy_sets(&base);
+    for light_sampling in [
+        LightSampling::Area,
+        LightSampling::Hemisphere,
+        LightSampling::Mis,
+    ] {
+        sets.push(repeated(
+            &with(&base, light_sampling, IndirectSampling::Brdf),
+            4,
+            1,
+        ));
+    }
+    for settings in sets {
+        let context = RenderContext::new(scene.clone(), settings.clone());
+        for (x, y) in [(0.0, 0.0), (0.3, 0.1), (2.0, -1.0)] {
+            let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 20_000);
+            let what = format!("{} L1 at ({x}, {y})", describe(&settings));
+            assert_agrees(&what, measured, floor_l1(x, y, &lights), 4.5, 1e-5);
+        }
+    }
+}
+
+/// Two lights of unequal power (radiance 8 and 0.5): with uniform selection
+/// each is picked with probability ½, with power selection 16:1, and both
+/// estimate the sum of the two polygon formulas.
+#[test]
+fn uniform_and_power_light_selection_agree_with_two_unequal_lights() {
+    let lights = [
+        (Vec3::new(0.0, 0.0, 1.0), 8.0),
+        (Vec3::new(1.0, 0.5, 0.7), 0.5),
+    ];
+    let scene = Arc::new(plane_under_lights(&lights));
+    for selection in LightSelection::ALL {
+        for light_sampling in [
+            LightSampling::Area,
+            LightSampling::SolidAngle,
+            LightSampling::Mis,
+        ] {
+            let settings = RenderSettings {
+                light_selection: selection,
+                ..with(
+                    &small(1, 1, TermSet::only(Term::L1)),
+                    light_sampling,
+                    IndirectSampling::Brdf,
+                )
+            };
+            let context = RenderContext::new(scene.clone(), settings.clone());
+            // four triangle lights: two of each quad
+            let probabilities: Vec<f32> = (0..4)
+                .map(|i| context.lights.selection_probability(i))
+                .collect();
+            let expected = match selection {
+                LightSelection::Uniform => [0.25, 0.25, 0.25, 0.25],
+                LightSelection::Power => [8.0 / 17.0, 8.0 / 17.0, 0.5 / 17.0, 0.5 / 17.0],
+            };
+            for (p, e) in probabilities.iter().zip(expected) {
+                assert!((p - e).abs() < 1e-5, "{selection}: {probabilities:?}");
+            }
+            for (x, y) in [(0.2, 0.0), (1.0, 0.6)] {
+                let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 20_000);
+                let what = format!("{} L1 at ({x}, {y})", describe(&settings));
+                assert_agrees(&what, measured, floor_l1(x, y, &lights), 4.5, 1e-5);
+            }
+        }
+    }
+}
+
+/// A Dirac light keeps weight 1 under every strategy: the quad collapsed to
+/// a cosine point gives the inverse-square law exactly, and a point light
+/// beside an area light is still found by the `brdf` and `hemisphere`
+/// strategies (which gather the area light).
+#[test]
+fn dirac_lights_are_light_sampled_by_every_strategy() {
+    let center = Vec3::new(0.0, 0.0, 1.0);
+    let scene = Arc::new(plane_under_lights(&[(center, RADIANCE)]));
+    let area = (2.0 * HALF_SIDE as f64).powi(2);
+    for light_sampling in LightSampling::ALL {
+        let settings = RenderSettings {
+            light_mode: LightMode::Point,
+            ..with(
+                &small(1, 1, TermSet::only(Term::L1)),
+                light_sampling,
+                IndirectSampling::Brdf,
+            )
+        };
+        let context = RenderContext::new(scene.clone(), settings);
+        for (x, y) in [(0.0, 0.0), (0.8, 0.5)] {
+            let p = Vec3::new(x, y, 0.0).as_dvec3();
+            let d = center.as_dvec3() - p;
+            let cos = d.z / d.length();
+            let expected =
+                ALBEDO as f64 / std::f64::consts::PI * RADIANCE as f64 * area * cos * cos
+                    / d.length_squared();
+            let (measured, _) = estimate(&context, ray_to_floor(x, y), Term::L1, 16);
+            assert!(
+                (measured - expected).abs() < 1e-5 * expected,
+                "{light_sampling} point L1 at ({x}, {y}): {measured}, expected {expected}"
+            );
+        }
+    }
+
+    // an area light and a point light together
+    let intensity = 3.0f32;
+    let point = Vec3::new(-1.0, 0.5, 1.5);
+    let mut mixed = plane_under_lights(&[(center, RADIANCE)]);
+    mixed.lights.push(PunctualLight {
+        name: "point".into(),
+        kind: PunctualKind::Point,
+        position: point,
+        direction: -Vec3::Z,
+        intensity: Vec3::splat(intensity),
+    });
+    let mixed = Arc::new(mixed);
+    for light_sampling in LightSampling::ALL {
+        let settings = with(
+            &small(1, 1, TermSet::only(Term::L1)),
+            light_sampling,
+            IndirectSampling::Brdf,
+        );
+        let context = RenderContext::new(mixed.clone(), settings.clone());
+        for (x, y) in [(0.0, 0.0), (-0.6, 0.4)] {
+            let d = (point - Vec3::new(x, y, 0.0)).as_dvec3();
+            let from_point = ALBEDO as f64 / std::f64::consts::PI * intensity as f64 * d.z
+                / d.length()
+                / d.length_squared();
+            let expected = floor_l1(x, y, &[(center, RADIANCE)]) + from_point;
+            let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 20_000);
+            let what = format!("{} area + point L1 at ({x}, {y})", describe(&settings));
+            assert_agrees(&what, measured, expected, 4.5, 1e-5);
+        }
+    }
+}
+
+/// The furnace (closed sphere emitting Le, albedo ρ): L1 = ρ Le with every
+/// strategy (two thousand triangle lights, near and far), L2 = ρ² Le and
+/// L3+ = ρ³ Le / (1 − ρ) with every continuation distribution, with N = 4
+/// light samples and with M = 4 continuations.
+#[test]
+fn every_strategy_matches_the_furnace() {
+    let (albedo, emission) = (0.6f64, 1.5f64);
+    let scene = Arc::new(furnace(albedo as f32, emission as f32));
+    let expected = [
+        (Term::L1, albedo * emission),
+        (Term::L2, albedo.powi(2) * emission),
+        (Term::L3Plus, albedo.powi(3) * emission / (1.0 - albedo)),
+    ];
+    for (term, value) in expected {
+        let base = small(12, 12, TermSet::only(term));
+        let mut sets = strategy_sets(&base);
+        sets.push(repeated(&base, 4, 1));
+        sets.push(repeated(&base, 1, 4));
+        sets.push(repeated(
+            &with(&base, LightSampling::Area, IndirectSampling::Cosine),
+            4,
+            4,
+        ));
+        sets.push(with(
+            &base,
+            LightSampling::Hemisphere,
+            IndirectSampling::Uniform,
+        ));
+        for settings in sets {
+            let film = render_shared(&scene, &settings, 48);
+            let what = format!("furnace {term} with {}", describe(&settings));
+            assert_agrees(&what, mean_and_error(&film, term), value, 4.5, 1e-4);
+        }
+    }
+}
+
+/// A sphere light (a point light made extended) inside a diffuse sphere:
+/// L1 = ρ I / (π R²) whether the sphere is light-sampled, gathered, or both.
+#[test]
+fn sphere_light_strategies_match_the_closed_form() {
+    let (albedo, intensity, radius, light_radius) = (0.5f64, 3.0f64, 2.0f64, 0.3f64);
+    let mut scene = point_in_sphere(albedo as f32, intensity as f32, radius as f32);
+    scene.cameras[0].world_from_camera = glam::Affine3A::from_rotation_translation(
+        glam::Quat::from_rotation_y(std::f32::consts::PI),
+        Vec3::new(0.0, 0.0, 1.0),
+    );
+    let scene = Arc::new(scene);
+    let l1 = albedo * intensity / (std::f64::consts::PI * radius * radius);
+    let base = RenderSettings {
+        light_mode: LightMode::Area,
+        light_radius: Some(light_radius as f32),
+        ..small(12, 12, TermSet::only(Term::L1))
+    };
+    for light_sampling in [
+        LightSampling::Area,
+        LightSampling::Brdf,
+        LightSampling::Hemisphere,
+        LightSampling::Mis,
+    ] {
+        let settings = with(&base, light_sampling, IndirectSampling::Brdf);
+        let film = render_shared(&scene, &settings, 64);
+        let what = format!("sphere light L1 with {}", describe(&settings));
+        assert_agrees(&what, mean_and_error(&film, Term::L1), l1, 4.5, 2e-4);
+    }
+}
+
+/// MIS needs the density of a light point found by a ray to be the one
+/// light sampling drew it with: for area and solid-angle sampling (near
+/// lights as spherical triangles, far ones by area), uniform or power
+/// selection, and sphere lights.
+#[test]
+fn light_pdf_queries_match_the_sampled_densities() {
+    use lumiere::accel::Hit;
+    use lumiere::shading::SurfacePoint;
+    let mut scene = plane_under_lights(&[
+        (Vec3::new(0.0, 0.0, 1.0), 8.0),
+        (Vec3::new(1.0, 0.5, 0.2), 0.5),
+    ]);
+    scene.lights.push(PunctualLight {
+        name: "point".into(),
+        kind: PunctualKind::Point,
+        position: Vec3::new(-1.0, 0.5, 1.5),
+        direction: -Vec3::Z,
+        intensity: Vec3::splat(3.0),
+    });
+    let scene = Arc::new(scene);
+    let mut checked = [0u32; 3];
+    for light_sampling in [LightSampling::Area, LightSampling::SolidAngle] {
+        for light_selection in LightSelection::ALL {
+            let settings = RenderSettings {
+                light_sampling,
+                light_selection,
+                light_mode: LightMode::Area,
+                light_radius: Some(0.1),
+                ..RenderSettings::default()
+            };
+            let context = RenderContext::new(scene.clone(), settings);
+            for (x, y) in [(0.0, 0.0), (0.9, 0.4), (15.0, 15.0)] {
+                // the floor triangle under (x, y)
+                let down = Ray::new(Vec3::new(x, y, 0.1), -Vec3::Z, f32::INFINITY);
+                let Some(Hit::Triangle { triangle, b, .. }) = context.accel.closest_hit(&down)
+                else {
+                    panic!("no floor under ({x}, {y})");
+                };
+                let at = SurfacePoint::new(&scene, triangle, b);
+                for i in 0..2000 {
+                    let s = SampleStream::new(9, 0, i);
+                    let Some(light) =
+                        context
+                            .lights
+                            .sample(&scene, &at, s.uniform(0), s.uniform2(1))
+                    else {
+                        continue;
+                    };
+                    if light.delta {
+                        continue;
+                    }
+                    let ray = at.spawn_ray(light.wi);
+                    let target = light.shadow_ray.at(1.0);
+                    let hit = context
+                        .accel
+                        .closest_hit(&ray)
+                        .expect("a light sample towards nothing");
+                    if (ray.at(hit.t()) - target).length() > 1e-3 {
+                        continue; // another light is in the way
+                    }
+                    let (found, kind) = match hit {
+                        Hit::Triangle { triangle, b, .. } => {
+                            let hit = SurfacePoint::new(&scene, triangle, b);
+                            (context.lights.pdf_triangle(&scene, at.p, triangle, &hit), 0)
+                        }
+                        Hit::Sphere { sphere, .. } => {
+                            (context.lights.sphere_emission(sphere, at.p, light.wi).1, 1)
+                        }
+                    };
+                    let solid_angle = light_sampling == LightSampling::SolidAngle && kind == 0;
+                    checked[if solid_angle { 2 } else { kind }] += 1;
+                    assert!(
+                        (found - light.pdf).abs() <= 2e-3 * light.pdf,
+                        "{light_sampling}/{light_selection} at ({x}, {y}): sampled pdf {}, queried {found}",
+                        light.pdf
+                    );
+                }
+            }
+        }
+    }
+    assert!(checked.iter().all(|&n| n > 1000), "{checked:?}");
+}
+
+// ── agreement on the Cornell box ─────────────────────────────────────
+
+/// Per-pixel means and their standard errors of `term`, averaged over square blocks of `block` pixels.
+fn block_means(film: &Film, term: Term, block: u32) -> Vec<(f64, f64)> {
+    let buffer = film.term(term).expect("term rendered");
+    let (w, h) = (film.width, film.height);
+    let mut blocks = Vec::new();
+    for by in 0..h / block {
+        for bx in 0..w / block {
+            let (mut sum, mut variance) = (0.0, 0.0);
+            for y in by * block..(by + 1) * block {
+                for x in bx * block..(bx + 1) * block {
+                    let i = (y * w + x) as usize;
+                    sum += lumiere::color::luminance(buffer.mean(i).as_vec3()) as f64;
+                    variance += buffer.standard_error(i).powi(2);
+                }
+            }
+            let n = (block * block) as f64;
+            blocks.push((sum / n, variance.sqrt() / n));
+        }
+    }
+    blocks
+}
+
+/// Every strategy renders the same L1 and the same L2 of the Cornell box:
+/// image means within 4.5 standard errors of the default's, and each 16×16
+/// quarter within 5. (Smaller blocks fail for `hemisphere` and `brdf`: at the
+/// top of the back wall the light is seen edge-on, a direction finds it once
+/// in hundreds, and a block's sample variance says nothing of its noise.)
+#[test]
+fn all_strategies_agree_on_the_cornell_box() {
+    let scene = Arc::new(builtin::cornell());
+    for term in [Term::L1, Term::L2] {
+        let base = small(32, 32, TermSet::only(term));
+        let reference = render_shared(&scene, &base, 64);
+        let (reference_mean, reference_error) = mean_and_error(&reference, term);
+        let reference_blocks = block_means(&reference, term, 16);
+        let mut sets = strategy_sets(&base);
+        sets.remove(LightSampling::ALL.len() - 1); // the default itself
+        sets.push(repeated(&base, 4, 4));
+        for settings in sets {
+            let film = render_shared(&scene, &settings, 64);
+            let (mean, error) = mean_and_error(&film, term);
+            let combined = (error * error + reference_error * reference_error).sqrt();
+            let z = (mean - reference_mean) / combined;
+            assert!(
+                z.abs() < 4.5,
+                "Cornell {term} with {}: {mean:.5} ± {error:.1e}, default {reference_mean:.5} ± {reference_error:.1e} (z = {z:.2})",
+                describe(&settings)
+            );
+            for (i, (block, reference)) in block_means(&film, term, 16)
+                .iter()
+                .zip(&reference_blocks)
+                .enumerate()
+            {
+                let combined = (block.1.powi(2) + reference.1.powi(2)).sqrt().max(1e-12);
+                let z = (block.0 - reference.0) / combined;
+                assert!(
+                    z.abs() < 5.0,
+                    "Cornell {term} block {i} with {}: {:.5} vs {:.5} (z = {z:.2})",
+                    describe(&settings),
+                    block.0,
+                    reference.0
+                );
+            }
+        }
+    }
+}
+
+/// The course's lesson on noise: at equal samples, direct lighting of the
+/// Cornell box is far less noisy when the light is sampled (`area`, `mis`)
+/// than when uniform directions have to find it (`hemisphere`).
+#[test]
+fn light_sampling_is_less_noisy_than_hemisphere_sampling() {
+    let scene = Arc::new(builtin::cornell());
+    let base = small(32, 32, TermSet::only(Term::L1));
+    let error = |light_sampling| {
+        let settings = with(&base, light_sampling, IndirectSampling::Brdf);
+        mean_and_error(&render_shared(&scene, &settings, 32), Term::L1).1
+    };
+    let hemisphere = error(LightSampling::Hemisphere);
+    let brdf = error(LightSampling::Brdf);
+    for light_sampling in [
+        LightSampling::Area,
+        LightSampling::SolidAngle,
+        LightSampling::Mis,
+    ] {
+        let e = error(light_sampling);
+        assert!(
+            3.0 * e < hemisphere,
+            "{light_sampling}: standard error {e:.2e}, hemisphere {hemisphere:.2e}"
+        );
+        assert!(
+            2.0 * e < brdf,
+            "{light_sampling}: standard error {e:.2e}, brdf {brdf:.2e}"
+        );
+    }
+}
+
+// ── work and path recording ──────────────────────────────────────────
+
+/// Rays are spent only where a strategy needs them: light-only strategies
+/// trace no gathered direction and, for L1 alone, no continuation;
+/// gathering-only strategies trace no shadow ray to an area light; the
+/// defaults reuse the continuation as the gathered direction.
+#[test]
+fn strategies_trace_only_the_rays_they_use() {
+    let rays = |settings: &RenderSettings| {
+        common::render_with_stats(builtin::cornell(), settings, 2)
+            .1
+            .rays
+    };
+    let l1 = small(16, 12, TermSet::only(Term::L1));
+    let area = rays(&with(&l1, LightSampling::Area, IndirectSampling::Brdf));
+    assert_eq!((area.gather, area.bounce), (0, 0), "{area:?}");
+    assert!(area.shadow > 0);
+    let brdf = rays(&with(&l1, LightSampling::Brdf, IndirectSampling::Brdf));
+    assert_eq!((brdf.shadow, brdf.gather), (0, 0), "{brdf:?}");
+    assert!(
+        brdf.bounce > 0,
+        "the continuation is the gathered direction"
+    );
+    let defaults = rays(&small(16, 12, TermSet::COURSE));
+    assert_eq!(defaults.gather, 0, "{defaults:?}");
+    let cosine = rays(&with(
+        &small(16, 12, TermSet::COURSE),
+        LightSampling::Mis,
+        IndirectSampling::Cosine,
+    ));
+    assert!(cosine.gather > 0, "{cosine:?}");
+    assert_eq!(cosine.per_term.iter().sum::<u64>(), cosine.total());
+}
+
+/// A recorded sample returns what an unrecorded one does, its segments'
+/// contributions sum to it term by term, and it logs one segment per ray.
+#[test]
+fn recorded_paths_add_up_to_the_sample() {
+    let scene = Arc::new(builtin::cornell());
+    let base = small(24, 24, TermSet::ALL);
+    let mut sets = strategy_sets(&base);
+    sets.push(repeated(&base, 3, 2));
+    sets.push(repeated(
+        &with(&base, LightSampling::Hemisphere, IndirectSampling::Uniform),
+        2,
+        3,
+    ));
+    // a pixel that sees the light, and three that see walls, blocks and floor
+    let l0 = render_shared(&scene, &small(24, 24, TermSet::only(Term::L0)), 1);
+    let light = (0..24 * 24)
+        .find(|&i| l0.term(Term::L0).unwrap().mean(i).x > 0.0)
+        .expect("the light is in view") as u32;
+    let pixels = [(light % 24, light / 24), (5, 18), (20, 9), (12, 20)];
+    let mut nonzero = [false; Term::COUNT];
+    for settings in sets {
+        let context = RenderContext::new(scene.clone(), settings.clone());
+        for (i, (x, y)) in pixels.into_iter().enumerate() {
+            for sample in 0..8 {
+                let stream = SampleStream::new(5, i as u64, sample);
+                let mut counts = RayCounts::default();
+                let plain = context.sample_pixel(x, y, &stream, &mut counts);
+                let mut recorded_counts = RayCounts::default();
+                let mut log = PathLog::default();
+                let radiance =
+                    context.trace_recorded(x, y, &stream, &mut recorded_counts, &mut log);
+                assert_eq!(radiance, plain, "{}", describe(&settings));
+                assert_eq!(recorded_counts, counts);
+                assert_eq!(log.segments.len() as u64, counts.total());
+                let camera = log
+                    .segments
+                    .iter()
+                    .filter(|s| s.kind == SegmentKind::Camera)
+                    .count();
+                assert_eq!(camera, 1);
+                let sums = log.radiance();
+                for term in Term::ALL {
+                    let (sum, value) = (sums[term.index()], radiance[term.index()]);
+                    assert!(
+                        (sum - value).abs().max_element() <= 1e-5 * value.abs().max_element(),
+                        "{} {term}: segments sum to {sum}, sample {value}",
+                        describe(&settings)
+                    );
+                    nonzero[term.index()] |= value.max_element() > 0.0;
+                }
+            }
+        }
+    }
+    assert_eq!(nonzero, [true; Term::COUNT], "every term was exercised");
+}
+
+// ── spherical triangle sampling: χ² ──────────────────────────────────
+
+/// Barycentrics (b1, b2) of where the ray from `p` along `w` meets the plane of `v`.
+fn barycentrics(v: &[DVec3; 3], p: DVec3, w: DVec3) -> (f64, f64) {
+    let (e1, e2) = (v[1] - v[0], v[2] - v[0]);
+    let s1 = w.cross(e2);
+    let divisor = s1.dot(e1);
+    let s = p - v[0];
+    (s.dot(s1) / divisor, w.dot(s.cross(e1)) / divisor)
+}
+
+/// Bin of barycentrics (b1, b2) among the K² sub-triangles of a K × K grid.
+fn bin_of(b1: f64, b2: f64, k: usize) -> usize {
+    let (x, y) = (b1.clamp(0.0, 1.0) * k as f64, b2.clamp(0.0, 1.0) * k as f64);
+    let (i, j) = ((x as usize).min(k - 1), (y as usize).min(k - 1));
+    let (fx, fy) = (x - i as f64, y - j as f64);
+    // cells (i, j) with i + j = k − 1 have only their lower half in the triangle
+    let upper = (fx + fy >= 1.0 && i + j < k - 1) as usize;
+    2 * (i * k + j) + upper
+}
+
+/// ∫ cos θ_q / d² dA from `p` over the sub-triangle of bin `bin` (midpoint
+/// rule on a fine grid): the solid angle the bin subtends.
+fn bin_solid_angles(v: &[DVec3; 3], p: DVec3, k: usize) -> Vec<f64> {
+    let normal = (v[1] - v[0]).cross(v[2] - v[0]);
+    let area = normal.length() / 2.0;
+    let normal = normal.normalize();
+    let fine = k * 64;
+    let cell_area = area / (fine * fine) as f64;
+    let mut bins = vec![0.0; 2 * k * k];
+    for i in 0..fine {
+        for j in 0..fine - i {
+            // the lower fine triangle of cell (i, j), and its upper one if inside
+            let mut centroids = vec![((i as f64 + 1.0 / 3.0), (j as f64 + 1.0 / 3.0))];
+            if i + j < fine - 1 {
+                centroids.push((i as f64 + 2.0 / 3.0, j as f64 + 2.0 / 3.0));
+            }
+            for (ci, cj) in centroids {
+                let (b1, b2) = (ci / fine as f64, cj / fine as f64);
+                let q = v[0] + b1 * (v[1] - v[0]) + b2 * (v[2] - v[0]);
+                let d = q - p;
+                let density = normal.dot(d).abs() / d.length().powi(3);
+                bins[bin_of(b1, b2, k)] += density * cell_area;
+            }
+        }
+    }
+    bins
+}
+
+/// Wilson–Hilferty's approximation of the χ² quantile with `dof` degrees of
+/// freedom exceeded with probability Φ(−z).
+fn chi2_quantile(dof: f64, z: f64) -> f64 {
+    let a = 2.0 / (9.0 * dof);
+    dof * (1.0 - a + z * a.sqrt()).powi(3)
+}
+
+/// Pearson's χ² of observed counts against expected ones, pooling the bins
+/// expected to hold fewer than 5 (Nori's rule); returns (χ², degrees of freedom).
+fn chi2(observed: &[u64], expected: &[f64]) -> (f64, f64) {
+    let (mut statistic, mut bins) = (0.0, 0usize);
+    let (mut pooled_observed, mut pooled_expected) = (0.0, 0.0);
+    for (&o, &e) in observed.iter().zip(expected) {
+        if e < 5.0 {
+            pooled_observed += o as f64;
+            pooled_expected += e;
+        } else {
+            statistic += (o as f64 - e).powi(2) / e;
+            bins += 1;
+        }
+    }
+    if pooled_expected > 0.0 {
+        statistic += (pooled_observed - pooled_expected).powi(2) / pooled_expected.max(1e-9);
+        bins += 1;
+    }
+    (statistic, bins as f64 - 1.0)
+}
+
+/// Directions drawn by `spherical_triangle` are uniform in solid angle over
+/// the triangle: χ² over 100 sub-triangles against the solid angle each
+/// subtends (integrated numerically), for a near, a far, a large and a
+/// grazing triangle. The Van Oosterom–Strackee solid angle matches the
+/// numerical integral and the returned pdf is its inverse.
+#[test]
+fn spherical_triangle_samples_are_uniform_in_solid_angle() {
+    let p = DVec3::ZERO;
+    let triangles: [(&str, [DVec3; 3]); 4] = [
+        (
+            "near",
+            [
+                DVec3::new(-0.6, -0.4, 0.3),
+                DVec3::new(0.7, -0.5, 0.35),
+                DVec3::new(0.1, 0.8, 0.25),
+            ],
+        ),
+        (
+            "far",
+            [
+                DVec3::new(1.0, 2.0, 12.0),
+                DVec3::new(1.3, 2.05, 12.1),
+                DVec3::new(1.1, 2.3, 11.9),
+            ],
+        ),
+        (
+            "large",
+            [
+                DVec3::new(-6.0, -5.0, 0.4),
+                DVec3::new(7.0, -6.0, 0.5),
+                DVec3::new(0.5, 8.0, 0.3),
+            ],
+        ),
+        (
+            "grazing",
+            [
+                DVec3::new(1.0, -0.3, 0.02),
+                DVec3::new(1.6, 0.1, 0.06),
+                DVec3::new(1.1, 0.5, 0.03),
+            ],
+        ),
+    ];
+    let k = 10;
+    let samples = 200_000u64;
+    for (name, v) in triangles {
+        let [a, b, c] = v.map(|q| (q - p).normalize());
+        let solid_angle = spherical_triangle_area(a, b, c);
+        let bins = bin_solid_angles(&v, p, k);
+        let integral: f64 = bins.iter().sum();
+        assert!(
+            (integral - solid_angle).abs() < 2e-3 * solid_angle,
+            "{name}: Ω = {solid_angle}, numerical integral {integral}"
+        );
+        let mut observed = vec![0u64; bins.len()];
+        for i in 0..samples {
+            let s = SampleStream::new(3, 0, i);
+            let u = Vec2::new(s.uniform(0), s.uniform(1));
+            let (w, pdf) = spherical_triangle(a, b, c, u).expect("a proper triangle");
+            assert!((pdf * solid_angle - 1.0).abs() < 1e-9, "{name}: pdf {pdf}");
+            let (b1, b2) = barycentrics(&v, p, w);
+            assert!(
+                b1 >= -1e-6 && b2 >= -1e-6 && b1 + b2 <= 1.0 + 1e-6,
+                "{name}: direction {w} misses the triangle ({b1}, {b2})"
+            );
+            observed[bin_of(b1, b2, k)] += 1;
+        }
+        let expected: Vec<f64> = bins
+            .iter()
+            .map(|omega| omega / integral * samples as f64)
+            .collect();
+        let (statistic, dof) = chi2(&observed, &expected);
+        // significance 1e-4 per triangle (z = 3.72)
+        let limit = chi2_quantile(dof, 3.72);
+        assert!(
+            statistic < limit,
+            "{name} (Ω = {solid_angle:.4} sr): χ² = {statistic:.1} > {limit:.1} with {dof} degrees of freedom"
+        );
+    }
+}
