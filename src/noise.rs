@@ -169,7 +169,8 @@ pub enum Unit {
 impl Unit {
     pub fn symbol(self) -> &'static str {
         match self {
-            Unit::Radiance => "W·m⁻²·sr⁻¹",
+            // "W·m⁻²·sr⁻¹" written without superscript minus signs, which some UI fonts lack
+            Unit::Radiance => "W/(m²·sr)",
             Unit::Percent => "%",
             Unit::Samples => "spp",
         }
@@ -236,7 +237,7 @@ fn viridis(t: f32) -> [f32; 3] {
         [0.105_093_04, 1.404_613_5, 1.384_590_1],
         [-0.330_861_83, 0.214_847_56, 0.095_095_16],
         [-4.634_230_5, -5.799_101, -19.332_441],
-        [6.228_27, 14.179_933, 56.690_553],
+        [6.228_27, 14.179_933, 56.690_55],
         [4.776_385, -13.745_145, -65.353_03],
         [-5.435_456, 4.645_852_6, 26.312_435],
     ];
@@ -303,7 +304,7 @@ impl FalseColour {
 }
 
 fn bar_position(value: f32, (lo, hi): (f32, f32), scale: Scale) -> f32 {
-    if !(hi > lo) {
+    if hi.is_nan() || lo.is_nan() || hi <= lo {
         // a constant image: magnitudes at the bottom, differences in the middle (white)
         return if lo < 0.0 { 0.5 } else { 0.0 };
     }
