@@ -9,7 +9,9 @@ mod bench;
 pub mod display;
 mod export;
 mod interact;
+pub mod noise_view;
 mod panels;
+pub mod probe_view;
 
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
@@ -17,6 +19,8 @@ use std::sync::{Arc, Mutex};
 use eframe::egui;
 use serde::{Deserialize, Serialize};
 
+use crate::metrics::ReferenceImage;
+use crate::noise::{DisplayMode, NoiseView};
 use crate::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
 use crate::scene::{Camera, Scene, builtin};
 use crate::settings::{DisplaySettings, RenderSettings};
@@ -35,6 +39,10 @@ pub struct ViewOptions {
     pub restore: bool,
     /// Measure toggle-to-preview latency and UI frame times, print them and exit.
     pub bench: bool,
+    /// What the image shows first (radiance or a noise view).
+    pub display_mode: DisplayMode,
+    /// A pixel to probe from the start.
+    pub probe: Option<(u32, u32)>,
 }
 
 impl Default for ViewOptions {
@@ -47,6 +55,8 @@ impl Default for ViewOptions {
             screenshot: None,
             restore: false,
             bench: false,
+            display_mode: DisplayMode::Image,
+            probe: None,
         }
     }
 }
@@ -62,6 +72,8 @@ pub struct Persisted {
     pub per_term_exr: bool,
     /// Folder where screenshots go.
     pub export_dir: String,
+    /// The image or a noise view (mode, whose samples, scale).
+    pub noise: NoiseView,
 }
 
 impl Default for Persisted {
@@ -72,6 +84,7 @@ impl Default for Persisted {
             stop_at_spp: None,
             per_term_exr: false,
             export_dir: ".".into(),
+            noise: NoiseView::default(),
         }
     }
 }
@@ -112,6 +125,13 @@ pub struct LumiereApp {
     /// Offset of the zoomed image from the centre, in points.
     pub pan: egui::Vec2,
     exports: Vec<std::thread::JoinHandle<Result<String, String>>>,
+    /// A converged image to compare with (the difference view); `None` until one is captured.
+    pub reference: Option<Arc<ReferenceImage>>,
+    noise_view: noise_view::NoiseViewState,
+    /// The pixel probe: its pixel, result and job.
+    pub probe: probe_view::ProbeState,
+    /// A click on the image probes the pixel instead of selecting the object.
+    pub probe_tool: bool,
 }
 
 impl LumiereApp {
@@ -120,6 +140,10 @@ impl LumiereApp {
         let mut state = Persisted {
             settings: options.settings.clone(),
             display: options.display,
+            noise: NoiseView {
+                mode: options.display_mode,
+                ..NoiseView::default()
+            },
             ..Persisted::default()
         };
         if options.restore
@@ -144,6 +168,10 @@ impl LumiereApp {
             stop_at_spp: options.exit_after_spp.or(state.stop_at_spp),
         };
         let renderer = ProgressiveRenderer::spawn(request.clone(), move || ctx.request_repaint());
+        let mut probe = probe_view::ProbeState::default();
+        if let Some((x, y)) = options.probe {
+            probe.pick(x, y);
+        }
         Ok(Self {
             message: scene.warnings.first().map(|w| format!("warning: {w}")),
             state,
@@ -167,6 +195,10 @@ impl LumiereApp {
             zoom: None,
             pan: egui::Vec2::ZERO,
             exports: Vec::new(),
+            reference: None,
+            noise_view: noise_view::NoiseViewState::default(),
+            probe,
+            probe_tool: false,
         })
     }
 
@@ -205,6 +237,31 @@ impl LumiereApp {
         self.renderer.snapshot()
     }
 
+    /// The noise view shown, if any: the mode is not the image and its
+    /// false colour is ready (it can be one snapshot old).
+    pub fn noise_image(&self) -> Option<Arc<crate::noise::FalseColour>> {
+        self.noise_view
+            .image(self.state.noise)
+            .map(|(_, image)| image)
+    }
+
+    /// Recomputes the noise view and the probe when the snapshot or the view changed.
+    fn update_views(&mut self, ctx: &egui::Context, snapshot: &Snapshot) {
+        if self.reference.is_none() && self.state.noise.mode == DisplayMode::Difference {
+            self.state.noise.mode = DisplayMode::Image;
+        }
+        self.noise_view.update(
+            ctx,
+            self.state.noise,
+            self.sent.settings.terms,
+            snapshot.generation,
+            self.renderer.film(),
+            self.reference.as_ref(),
+        );
+        self.probe
+            .update(ctx, &self.sent, snapshot.generation, self.renderer.film());
+    }
+
     /// Replaces the scene by the one at `spec`; on failure keeps the current one.
     pub fn load_scene(&mut self, spec: &str) {
         match builtin::load(spec) {
@@ -230,6 +287,15 @@ impl LumiereApp {
             return;
         };
         if snapshot.preview || snapshot.samples_per_pixel() < target {
+            return;
+        }
+        // the noise view and the probe catch up with the last pass first
+        if !self
+            .noise_view
+            .is_current(self.state.noise, snapshot.generation)
+            || !self.probe.is_settled(snapshot.samples_per_pixel())
+        {
+            ctx.request_repaint_after(std::time::Duration::from_millis(20));
             return;
         }
         let Some(path) = self.screenshot.clone() else {
@@ -373,7 +439,9 @@ impl eframe::App for LumiereApp {
         let snapshot = self.snapshot();
         panels::status_bar(self, ui, &snapshot);
         panels::side_panel(self, ui);
+        self.update_views(&ctx, &snapshot);
         self.image_rect = Some(panels::viewport(self, ui, &snapshot));
+        probe_view::probe_window(&ctx, &mut self.probe);
         self.bench_step(&ctx, &snapshot, started);
         self.sync_renderer();
         self.script_exit(&ctx, &snapshot);
