@@ -10,7 +10,11 @@
 //!
 //! A term's buffers exist only once the term has been rendered; each term
 //! counts its own samples per pixel, so a term switched on later starts from
-//! zero while the others keep theirs.
+//! zero while the others keep theirs. Each term also records the pass indices
+//! it received (a hidden term skips passes), so that a pixel's samples can be
+//! traced again exactly (`probe`).
+
+use std::ops::Range;
 
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
@@ -33,6 +37,8 @@ pub struct TermBuffer {
     pub luminance: Vec<Welford>,
     /// Samples per pixel accumulated so far.
     pub samples: u32,
+    /// The pass indices accumulated, in order, as runs of consecutive passes.
+    passes: Vec<Range<u32>>,
 }
 
 impl TermBuffer {
@@ -41,11 +47,12 @@ impl TermBuffer {
             sum: vec![DVec3::ZERO; pixels],
             luminance: vec![Welford::default(); pixels],
             samples: 0,
+            passes: Vec::new(),
         }
     }
 
-    /// Adds one sample per pixel: term `term` of each pixel's `radiance`.
-    fn add_pass(&mut self, term: usize, radiance: &[[Vec3; Term::COUNT]]) {
+    /// Adds one sample per pixel, from pass `pass`: term `term` of each pixel's `radiance`.
+    fn add_pass(&mut self, term: usize, pass: u32, radiance: &[[Vec3; Term::COUNT]]) {
         let n = (self.samples + 1) as f64;
         self.sum
             .par_iter_mut()
@@ -60,6 +67,15 @@ impl TermBuffer {
                 stats.m2 += delta * (y - stats.mean);
             });
         self.samples += 1;
+        match self.passes.last_mut() {
+            Some(run) if run.end == pass => run.end += 1,
+            _ => self.passes.push(pass..pass + 1),
+        }
+    }
+
+    /// The pass indices of the accumulated samples, in the order they were added.
+    pub fn passes(&self) -> impl Iterator<Item = u32> + '_ {
+        self.passes.iter().flat_map(Clone::clone)
     }
 
     /// Mean radiance of pixel `i` (zero before any sample).
@@ -112,14 +128,15 @@ impl Film {
         self.term(term).map_or(0, |b| b.samples)
     }
 
-    /// Adds one pass: `radiance[i][t]` is pixel i's sample of term t; only
-    /// the terms of `terms` are accumulated.
-    pub fn add_pass(&mut self, terms: TermSet, radiance: &[[Vec3; Term::COUNT]]) {
+    /// Adds pass `pass` (the sample index of its random numbers):
+    /// `radiance[i][t]` is pixel i's sample of term t; only the terms of
+    /// `terms` are accumulated.
+    pub fn add_pass(&mut self, terms: TermSet, pass: u32, radiance: &[[Vec3; Term::COUNT]]) {
         let pixels = self.pixel_count();
         assert_eq!(radiance.len(), pixels, "pass size differs from the film's");
         for term in terms.iter() {
             let buffer = self.terms[term.index()].get_or_insert_with(|| TermBuffer::new(pixels));
-            buffer.add_pass(term.index(), radiance);
+            buffer.add_pass(term.index(), pass, radiance);
         }
     }
 
@@ -150,9 +167,10 @@ mod tests {
     fn welford_matches_two_pass_variance() {
         let mut film = Film::new(1, 1);
         let values = [1.0f32, 2.0, 4.0, 8.0];
-        for v in values {
+        for (pass, v) in [0, 1, 5, 6].into_iter().zip(values) {
             film.add_pass(
                 TermSet::only(Term::L1),
+                pass,
                 &[[Vec3::ZERO, Vec3::splat(v), Vec3::ZERO, Vec3::ZERO]],
             );
         }
@@ -167,5 +185,6 @@ mod tests {
         assert!((buffer.standard_error(0) - (variance / 4.0).sqrt()).abs() < 1e-6);
         assert!(film.term(Term::L0).is_none());
         assert_eq!(film.samples(Term::L1), 4);
+        assert_eq!(buffer.passes().collect::<Vec<_>>(), [0, 1, 5, 6]);
     }
 }

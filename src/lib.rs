@@ -37,6 +37,8 @@ pub mod geometry;
 pub mod integrator;
 pub mod lights;
 pub mod metrics;
+pub mod noise;
+pub mod probe;
 pub mod progressive;
 pub mod render;
 pub mod sampling;

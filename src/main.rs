@@ -14,6 +14,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use lumiere::camera::CameraRays;
 use lumiere::export::{ImageFormat, save_image};
+use lumiere::noise::DisplayMode;
 use lumiere::render::{Budget, RenderStats, render};
 use lumiere::scene::Camera;
 use lumiere::scene::builtin;
@@ -183,6 +184,12 @@ struct ViewArgs {
     /// The second estimator's sampler (default: the first's).
     #[arg(long)]
     compare_sampler: Option<Sampler>,
+    /// What the image shows: image, standard-error, relative-error or sample-count.
+    #[arg(long, default_value = "image")]
+    display_mode: DisplayMode,
+    /// Probe the pixel at X,Y (from the top left) from the start.
+    #[arg(long, value_parser = parse_pixel)]
+    probe: Option<(u32, u32)>,
     #[command(flatten)]
     options: SceneOptions,
 }
@@ -198,6 +205,13 @@ fn parse_seconds(s: &str) -> Result<f64, String> {
             "{s} seconds is not a positive duration (at most 1e7)"
         ))
     }
+}
+
+fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
+    let parsed = s
+        .split_once(',')
+        .and_then(|(x, y)| Some((x.trim().parse().ok()?, y.trim().parse().ok()?)));
+    parsed.ok_or_else(|| format!("'{s}' is not a pixel X,Y"))
 }
 
 fn parse_positive(s: &str) -> Result<f32, String> {
@@ -462,6 +476,8 @@ fn run_view(args: ViewArgs, restore: bool) -> Result<(), Failure> {
         reference: args.reference,
         compare,
         convergence_plot: args.convergence_plot,
+        display_mode: args.display_mode,
+        probe: args.probe,
     };
     lumiere::app::run(options).map_err(|e| runtime(anyhow::anyhow!(e)))
 }

@@ -14,7 +14,7 @@ use rayon::prelude::*;
 use crate::film::Film;
 use crate::integrator::{RayCounts, RenderContext, TermRadiance};
 use crate::sampling::SampleStream;
-use crate::settings::Term;
+use crate::settings::{RenderSettings, Term};
 
 /// Rows per tile: small enough to balance two to many cores, large enough
 /// that scheduling costs nothing next to the paths.
@@ -39,6 +39,12 @@ impl RenderStats {
     pub fn mrays_per_second(&self) -> f64 {
         self.rays.total() as f64 / self.elapsed.as_secs_f64().max(1e-9) / 1e6
     }
+}
+
+/// The random numbers of sample `pass` of pixel `pixel` (row-major index):
+/// the one place that decides them, shared by the passes and the pixel probe.
+pub fn sample_stream(settings: &RenderSettings, pixel: u64, pass: u32) -> SampleStream {
+    SampleStream::with_sampler(settings.sampler, settings.seed, pixel, pass as u64)
 }
 
 /// Reusable memory for the samples of one pass.
@@ -71,7 +77,6 @@ pub fn render_pass_cancellable(
     buffer
         .samples
         .resize(film.pixel_count(), [Vec3::ZERO; Term::COUNT]);
-    let (seed, sampler) = (context.settings.seed, context.settings.sampler);
     let counts = buffer
         .samples
         .par_chunks_mut(width * TILE_ROWS)
@@ -84,7 +89,7 @@ pub fn render_pass_cancellable(
             for (offset, sample) in pixels.iter_mut().enumerate() {
                 let index = tile * width * TILE_ROWS + offset;
                 let (x, y) = ((index % width) as u32, (index / width) as u32);
-                let stream = SampleStream::with_sampler(sampler, seed, index as u64, pass as u64);
+                let stream = sample_stream(&context.settings, index as u64, pass);
                 *sample = context.sample_pixel(x, y, &stream, &mut counts);
             }
             counts
@@ -96,7 +101,7 @@ pub fn render_pass_cancellable(
     if cancel.load(Ordering::Relaxed) {
         return None;
     }
-    film.add_pass(context.settings.terms, &buffer.samples);
+    film.add_pass(context.settings.terms, pass, &buffer.samples);
     Some(counts)
 }
 

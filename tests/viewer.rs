@@ -2,12 +2,15 @@
 //! the machine's Vulkan/GL driver), and the render worker's response.
 #![cfg(feature = "gui")]
 
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use eframe::egui;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use lumiere::app::{LumiereApp, ViewOptions};
+use lumiere::metrics::ReferenceImage;
+use lumiere::noise::DisplayMode;
 use lumiere::progressive::Snapshot;
 use lumiere::{BrdfOverride, LightMode, RenderSettings, Term};
 
@@ -215,6 +218,9 @@ fn a_broken_scene_file_shows_its_error_and_the_scene_stays() {
     std::fs::write(&broken, b"{ not json").unwrap();
     harness.get_by_label("Scene").click();
     harness.run_steps(2);
+    // the last group of the panel: scroll it into view, as a user would
+    harness.get_by_label("Load").scroll_to_me();
+    harness.run_steps(2);
     let field = harness.get_by_label("file");
     field.focus();
     harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
@@ -236,4 +242,228 @@ fn a_broken_scene_file_shows_its_error_and_the_scene_stays() {
         "the typed path replaced the field's text: {message}"
     );
     assert_eq!(app.scene.name, "cornell", "the previous scene stays");
+}
+
+/// Steps the UI until the app satisfies `done` (60 s at most).
+fn wait_for_app(
+    harness: &mut Harness<'static, LumiereApp>,
+    what: &str,
+    done: impl Fn(&LumiereApp) -> bool,
+) {
+    let deadline = Instant::now() + Duration::from_secs(60);
+    while !done(harness.state()) {
+        assert!(Instant::now() < deadline, "timed out waiting for {what}");
+        harness.step();
+        std::thread::sleep(Duration::from_millis(10));
+    }
+}
+
+/// The window as rendered now, and where the image is in it (pixels).
+struct WindowShot {
+    window: image::RgbaImage,
+    image_rect: egui::Rect,
+}
+
+impl WindowShot {
+    fn take(harness: &mut Harness<'static, LumiereApp>) -> Self {
+        let ppp = harness.ctx.pixels_per_point();
+        let image_rect = harness.state().image_rect().expect("the image is drawn") * ppp;
+        let window = harness.render().expect("the harness renders");
+        Self { window, image_rect }
+    }
+
+    /// The colour at film pixel (`x`, `y`) of the 64×48 image.
+    fn colour_at(&self, x: u32, y: u32) -> [u8; 3] {
+        let rect = self.image_rect;
+        let point = rect.min
+            + egui::vec2(
+                (x as f32 + 0.5) / 64.0 * rect.width(),
+                (y as f32 + 0.5) / 48.0 * rect.height(),
+            );
+        let p = self.window.get_pixel(point.x as u32, point.y as u32);
+        [p[0], p[1], p[2]]
+    }
+}
+
+/// The colour on screen at film pixel (`x`, `y`).
+fn screen_colour(harness: &mut Harness<'static, LumiereApp>, x: u32, y: u32) -> [u8; 3] {
+    WindowShot::take(harness).colour_at(x, y)
+}
+
+/// A pixel whose value sits in the middle of the colour bar.
+fn mid_range_pixel(app: &LumiereApp) -> (u32, u32) {
+    let image = app.noise_image().expect("a noise view is shown");
+    let i = image
+        .values
+        .iter()
+        .position(|&v| (0.3..0.7).contains(&image.position(v)))
+        .expect("some pixel in the middle of the range");
+    ((i % 64) as u32, (i / 64) as u32)
+}
+
+/// The false colour `crate::noise` chose for film pixel (`x`, `y`), as sRGB bytes.
+fn expected_colour(app: &LumiereApp, x: u32, y: u32) -> [u8; 3] {
+    let image = app.noise_image().expect("a noise view is shown");
+    let linear = image.rgba[(y * 64 + x) as usize];
+    std::array::from_fn(|c| (lumiere::color::linear_to_srgb(linear[c]) * 255.0).round() as u8)
+}
+
+fn close_colours(a: [u8; 3], b: [u8; 3]) -> bool {
+    a.iter().zip(b).all(|(&a, b)| a.abs_diff(b) <= 2)
+}
+
+#[test]
+fn display_modes_recolour_the_image_and_show_their_legend() {
+    let mut harness = harness();
+    harness.state_mut().state.stop_at_spp = Some(8);
+    // exposure and tonemap apply to the image only, never to false colour
+    harness.state_mut().state.display.exposure = 1.5;
+    harness.state_mut().state.display.tonemap = lumiere::settings::Tonemap::Reinhard;
+    wait_for(&mut harness, "8 spp", |s| {
+        s.idle && s.samples_per_pixel() >= 8
+    });
+    harness.run_steps(2);
+    assert!(
+        harness
+            .query_by_label_contains("Standard error of")
+            .is_none()
+    );
+    let radiance_shot = WindowShot::take(&mut harness);
+
+    harness.get_by_label("mode").click();
+    harness.run_steps(2);
+    harness.get_by_label("Standard error").click();
+    wait_for_app(&mut harness, "the standard-error view", |app| {
+        app.noise_image().is_some()
+    });
+    harness.run_steps(2);
+    let image = harness.state().noise_image().unwrap();
+    assert_eq!(image.view.mode, DisplayMode::StandardError);
+    assert!(
+        image.range.1 > 0.0,
+        "8 samples of the Cornell box are noisy"
+    );
+    // the shader shows the map's colours as they are: no exposure, no tonemap
+    let (x, y) = mid_range_pixel(harness.state());
+    let radiance = radiance_shot.colour_at(x, y);
+    let shown = screen_colour(&mut harness, x, y);
+    assert!(
+        close_colours(shown, expected_colour(harness.state(), x, y)),
+        "{shown:?} on screen"
+    );
+    assert!(!close_colours(shown, radiance), "the image did not change");
+    harness.get_by_label_contains("Standard error of L0+L1+L2");
+
+    // V: the next mode
+    harness.key_press(egui::Key::V);
+    wait_for_app(&mut harness, "the relative-error view", |app| {
+        app.noise_image()
+            .is_some_and(|i| i.view.mode == DisplayMode::RelativeError)
+    });
+    harness.run_steps(2);
+    harness.get_by_label_contains("Relative error of");
+    let (x, y) = mid_range_pixel(harness.state());
+    let shown = screen_colour(&mut harness, x, y);
+    assert!(close_colours(shown, expected_colour(harness.state(), x, y)));
+
+    harness.state_mut().state.noise.mode = DisplayMode::Image;
+    harness.run_steps(3);
+    assert!(
+        harness
+            .query_by_label_contains("Relative error of")
+            .is_none()
+    );
+    let shot = WindowShot::take(&mut harness);
+    for (x, y) in [(x, y), (32, 21), (10, 40)] {
+        assert!(close_colours(
+            shot.colour_at(x, y),
+            radiance_shot.colour_at(x, y)
+        ));
+    }
+}
+
+#[test]
+fn the_difference_view_needs_a_reference_and_is_signed() {
+    let mut harness = harness();
+    harness.state_mut().state.stop_at_spp = Some(4);
+    wait_for(&mut harness, "4 spp", |s| {
+        s.idle && s.samples_per_pixel() >= 4
+    });
+    harness.get_by_label("mode").click();
+    harness.run_steps(2);
+    assert!(
+        harness.query_by_label("Difference").is_none(),
+        "no reference, no difference"
+    );
+    harness.key_press(egui::Key::Escape);
+    harness.run_steps(2);
+
+    // a synthetic reference: uniform grey of luminance 0.1
+    harness.state_mut().reference = Some(Arc::new(ReferenceImage {
+        width: 64,
+        height: 48,
+        radiance: vec![glam::Vec3::splat(0.1); 64 * 48],
+        label: "grey 0.1".into(),
+    }));
+    harness.get_by_label("mode").click();
+    harness.run_steps(2);
+    harness.get_by_label("Difference").click();
+    wait_for_app(&mut harness, "the difference view", |app| {
+        app.noise_image()
+            .is_some_and(|i| i.view.mode == DisplayMode::Difference)
+    });
+    harness.run_steps(2);
+    harness.get_by_label_contains("image − reference (grey 0.1)");
+    let app = harness.state();
+    let image = app.noise_image().unwrap();
+    assert_eq!(image.range.0, -image.range.1, "a symmetric range");
+    let film = app.snapshot();
+    for (value, pixel) in image.values.iter().zip(&film.radiance) {
+        let y = lumiere::color::luminance(glam::Vec3::from_slice(&pixel[..3]));
+        assert!((value - (y - 0.1)).abs() < 1e-4);
+    }
+    assert!(image.values.iter().any(|&v| v < 0.0) && image.values.iter().any(|&v| v > 0.0));
+    let (x, y) = mid_range_pixel(harness.state());
+    let shown = screen_colour(&mut harness, x, y);
+    assert!(close_colours(shown, expected_colour(harness.state(), x, y)));
+}
+
+#[test]
+fn a_probe_click_shows_the_pixel_statistics_with_n_equal_to_the_spp() {
+    let mut harness = harness();
+    harness.state_mut().state.stop_at_spp = Some(6);
+    let done = wait_for(&mut harness, "6 spp", |s| {
+        s.idle && s.samples_per_pixel() >= 6
+    });
+    harness.get_by_label("Probe").click();
+    harness.run_steps(2);
+    assert!(harness.state().probe_tool);
+    let rect = harness.state().image_rect().expect("the image is drawn");
+    // the back wall, lit by all three terms
+    let on_back_wall = rect.min + egui::vec2(rect.width() * 0.5, rect.height() * 0.45);
+    mouse_drag(&mut harness, on_back_wall, on_back_wall);
+    assert_eq!(
+        harness.state().selected,
+        None,
+        "a probe click selects nothing"
+    );
+    let (x, y) = harness.state().probe.pixel.expect("a pixel is probed");
+    assert_eq!((x, y), (32, 21));
+    wait_for_app(&mut harness, "the probe", |app| app.probe.result.is_some());
+    harness.run_steps(2);
+    harness.get_by_label("Pixel probe");
+    harness.get_by_label("pixel (32, 21)");
+    let result = harness.state().probe.result.clone().unwrap();
+    assert_eq!(result.samples_per_pixel, done.samples_per_pixel());
+    assert_eq!(result.probe.terms.len(), 3, "L0, L1, L2");
+    for term in &result.probe.terms {
+        assert_eq!(term.film_samples, done.samples_per_pixel());
+        assert!(term.reproduces_film(), "{:?}", term.term);
+    }
+    let l1 = &result.probe.terms[1];
+    assert!(l1.mean_luminance() > 0.0 && l1.standard_error > 0.0);
+    // and the window closes
+    harness.get_by_label("Clear probe").click();
+    harness.run_steps(2);
+    assert!(harness.query_by_label("Pixel probe").is_none());
 }

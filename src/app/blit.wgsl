@@ -1,5 +1,6 @@
 // Blit of the film's radiance to the screen: exposure, tonemap, sRGB.
 // The same formulas as `Tonemap::apply` and `color::linear_to_srgb` (PNG export).
+// A false-colour image (noise views) is already display colour: only sRGB.
 
 struct Params {
     // 2^exposure
@@ -8,7 +9,8 @@ struct Params {
     tonemap: u32,
     // 1 when the target is not an sRGB format and the shader must encode
     encode_srgb: u32,
-    _pad: u32,
+    // 1 for a false-colour image: no exposure, no tonemap
+    false_colour: u32,
 };
 
 @group(0) @binding(0) var image: texture_2d<f32>;
@@ -53,8 +55,12 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let size = vec2<f32>(textureDimensions(image));
     // nearest neighbour: each film pixel is a crisp square when zoomed
     let texel = vec2<i32>(clamp(floor(in.uv * size), vec2<f32>(0.0), size - 1.0));
-    let radiance = textureLoad(image, texel, 0).rgb * params.scale;
-    var color = vec3<f32>(tonemap(radiance.r), tonemap(radiance.g), tonemap(radiance.b));
+    let texel_value = textureLoad(image, texel, 0).rgb;
+    var color = clamp(texel_value, vec3<f32>(0.0), vec3<f32>(1.0));
+    if params.false_colour == 0u {
+        let radiance = texel_value * params.scale;
+        color = vec3<f32>(tonemap(radiance.r), tonemap(radiance.g), tonemap(radiance.b));
+    }
     if params.encode_srgb == 1u {
         color = vec3<f32>(srgb(color.r), srgb(color.g), srgb(color.b));
     }

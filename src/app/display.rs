@@ -5,7 +5,9 @@
 //! arrives; every frame a tiny paint callback draws one triangle whose
 //! fragment shader (`blit.wgsl`) reads the texel under it (nearest neighbour),
 //! applies 2^EV, the tonemap and the sRGB curve. The image never goes through
-//! egui's texture manager.
+//! egui's texture manager. A noise view (false colour, already mapped to
+//! linear RGB by `crate::noise`) goes through the same texture; the shader
+//! then skips exposure and tonemap.
 
 use std::num::NonZeroU64;
 use std::sync::Arc;
@@ -13,8 +15,37 @@ use std::sync::Arc;
 use eframe::egui;
 use eframe::egui_wgpu::{self, CallbackResources, CallbackTrait, ScreenDescriptor, wgpu};
 
+use crate::noise::FalseColour;
 use crate::progressive::Snapshot;
 use crate::settings::{DisplaySettings, Tonemap};
+
+/// What the texture shows: the worker's radiance or a noise view of the film.
+#[derive(Clone)]
+pub enum ImageSource {
+    Radiance(Arc<Snapshot>),
+    /// `serial` changes with every new false-colour image.
+    FalseColour {
+        serial: u64,
+        image: Arc<FalseColour>,
+    },
+}
+
+impl ImageSource {
+    /// Identifies the pixels, so each image is uploaded once.
+    fn key(&self) -> (bool, u64) {
+        match self {
+            ImageSource::Radiance(snapshot) => (false, snapshot.generation),
+            ImageSource::FalseColour { serial, .. } => (true, *serial),
+        }
+    }
+
+    fn pixels(&self) -> (u32, u32, &[[f32; 4]]) {
+        match self {
+            ImageSource::Radiance(s) => (s.width, s.height, &s.radiance),
+            ImageSource::FalseColour { image, .. } => (image.width, image.height, &image.rgba),
+        }
+    }
+}
 
 /// Uniforms of `blit.wgsl`.
 #[repr(C)]
@@ -23,7 +54,8 @@ struct Params {
     scale: f32,
     tonemap: u32,
     encode_srgb: u32,
-    _pad: u32,
+    /// 1 for a false-colour image: no exposure, no tonemap.
+    false_colour: u32,
 }
 
 /// GPU objects that live as long as the renderer (in egui_wgpu's callback resources).
@@ -40,8 +72,8 @@ struct ImageTexture {
     bind_group: wgpu::BindGroup,
     width: u32,
     height: u32,
-    /// Generation of the snapshot it holds.
-    generation: u64,
+    /// Which image it holds (see `ImageSource::key`).
+    key: (bool, u64),
 }
 
 impl BlitResources {
@@ -126,14 +158,16 @@ impl BlitResources {
         }
     }
 
-    /// Uploads `snapshot` if it is not the one on the GPU already, and the display uniforms.
+    /// Uploads `source` if it is not the one on the GPU already, and the display uniforms.
     pub fn prepare(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
-        snapshot: &Snapshot,
+        source: &ImageSource,
         display: DisplaySettings,
     ) {
+        let key = source.key();
+        let (width, height, pixels) = source.pixels();
         let params = Params {
             scale: display.exposure.exp2(),
             tonemap: match display.tonemap {
@@ -142,23 +176,18 @@ impl BlitResources {
                 Tonemap::Aces => 2,
             },
             encode_srgb: self.encode_srgb as u32,
-            _pad: 0,
+            false_colour: key.0 as u32,
         };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
-        if snapshot.radiance.is_empty()
-            || self
-                .texture
-                .as_ref()
-                .is_some_and(|t| t.generation == snapshot.generation)
-        {
+        if pixels.is_empty() || self.texture.as_ref().is_some_and(|t| t.key == key) {
             return;
         }
         let fits = self
             .texture
             .as_ref()
-            .is_some_and(|t| (t.width, t.height) == (snapshot.width, snapshot.height));
+            .is_some_and(|t| (t.width, t.height) == (width, height));
         if !fits {
-            self.texture = Some(self.create_texture(device, snapshot.width, snapshot.height));
+            self.texture = Some(self.create_texture(device, width, height));
         }
         let Some(image) = &mut self.texture else {
             return;
@@ -170,19 +199,19 @@ impl BlitResources {
                 origin: wgpu::Origin3d::ZERO,
                 aspect: wgpu::TextureAspect::All,
             },
-            bytemuck::cast_slice(&snapshot.radiance),
+            bytemuck::cast_slice(pixels),
             wgpu::TexelCopyBufferLayout {
                 offset: 0,
-                bytes_per_row: Some(snapshot.width * 16),
-                rows_per_image: Some(snapshot.height),
+                bytes_per_row: Some(width * 16),
+                rows_per_image: Some(height),
             },
             wgpu::Extent3d {
-                width: snapshot.width,
-                height: snapshot.height,
+                width,
+                height,
                 depth_or_array_layers: 1,
             },
         );
-        image.generation = snapshot.generation;
+        image.key = key;
     }
 
     fn create_texture(&self, device: &wgpu::Device, width: u32, height: u32) -> ImageTexture {
@@ -220,7 +249,7 @@ impl BlitResources {
             bind_group,
             width,
             height,
-            generation: u64::MAX,
+            key: (false, u64::MAX),
         }
     }
 
@@ -234,9 +263,9 @@ impl BlitResources {
     }
 }
 
-/// The per-frame paint callback: which snapshot, with which display settings.
+/// The per-frame paint callback: which image, with which display settings.
 pub struct BlitCallback {
-    pub snapshot: Arc<Snapshot>,
+    pub source: ImageSource,
     pub display: DisplaySettings,
 }
 
@@ -250,7 +279,7 @@ impl CallbackTrait for BlitCallback {
         resources: &mut CallbackResources,
     ) -> Vec<wgpu::CommandBuffer> {
         if let Some(blit) = resources.get_mut::<BlitResources>() {
-            blit.prepare(device, queue, &self.snapshot, self.display);
+            blit.prepare(device, queue, &self.source, self.display);
         }
         Vec::new()
     }
@@ -268,14 +297,9 @@ impl CallbackTrait for BlitCallback {
 }
 
 /// Adds the image to `ui`'s painter, drawn in `rect` (points).
-pub fn paint_image(
-    ui: &egui::Ui,
-    rect: egui::Rect,
-    snapshot: Arc<Snapshot>,
-    display: DisplaySettings,
-) {
+pub fn paint_image(ui: &egui::Ui, rect: egui::Rect, source: ImageSource, display: DisplaySettings) {
     ui.painter().add(egui_wgpu::Callback::new_paint_callback(
         rect,
-        BlitCallback { snapshot, display },
+        BlitCallback { source, display },
     ));
 }

@@ -9,6 +9,7 @@ use eframe::egui;
 use glam::{Affine3A, Quat, Vec2, Vec3};
 
 use super::LumiereApp;
+use super::probe_view::ImageMapping;
 use crate::accel::{Accel, Hit};
 use crate::camera::CameraRays;
 use crate::scene::{BrdfModel, Camera, Material, Scene};
@@ -118,8 +119,9 @@ impl Orbit {
     }
 }
 
-/// Handles the viewport's mouse input for the image drawn in `rect`.
-pub fn viewport_input(app: &mut LumiereApp, response: &egui::Response, rect: egui::Rect) {
+/// Handles the viewport's mouse input for the image drawn at `mapping`.
+pub fn viewport_input(app: &mut LumiereApp, response: &egui::Response, mapping: &ImageMapping) {
+    let rect = mapping.rect;
     let scene = Arc::clone(&app.scene);
     let shift = response.ctx.input(|i| i.modifiers.shift);
     if shift && app.zoom.is_some() && response.dragged() {
@@ -143,8 +145,15 @@ pub fn viewport_input(app: &mut LumiereApp, response: &egui::Response, rect: egu
         && let Some(pointer) = response.interact_pointer_pos()
         && rect.contains(pointer)
     {
-        let uv = (pointer - rect.min) / rect.size();
-        app.selected = app.pick(Vec2::new(uv.x, uv.y));
+        let command = response.ctx.input(|i| i.modifiers.command);
+        if app.probe_tool || command {
+            if let Some((x, y)) = mapping.screen_to_pixel(pointer) {
+                app.probe.pick(x, y);
+            }
+        } else {
+            let uv = (pointer - rect.min) / rect.size();
+            app.selected = app.pick(Vec2::new(uv.x, uv.y));
+        }
     }
 }
 

@@ -10,7 +10,9 @@ mod convergence;
 pub mod display;
 mod export;
 mod interact;
+pub mod noise_view;
 mod panels;
+pub mod probe_view;
 pub mod reference;
 pub mod split;
 
@@ -22,6 +24,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::convergence::EstimatorKey;
 use crate::metrics::ReferenceImage;
+use crate::noise::{DisplayMode, NoiseView};
 use crate::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
 use crate::scene::{Camera, Scene, builtin};
 use crate::settings::{DisplaySettings, RenderSettings};
@@ -46,6 +49,10 @@ pub struct ViewOptions {
     pub compare: Option<EstimatorKey>,
     /// Open the convergence plot.
     pub convergence_plot: bool,
+    /// What the image shows first (radiance or a noise view).
+    pub display_mode: DisplayMode,
+    /// A pixel to probe from the start.
+    pub probe: Option<(u32, u32)>,
 }
 
 impl Default for ViewOptions {
@@ -61,6 +68,8 @@ impl Default for ViewOptions {
             reference: None,
             compare: None,
             convergence_plot: false,
+            display_mode: DisplayMode::Image,
+            probe: None,
         }
     }
 }
@@ -76,6 +85,8 @@ pub struct Persisted {
     pub per_term_exr: bool,
     /// Folder where screenshots go.
     pub export_dir: String,
+    /// The image or a noise view (mode, whose samples, scale).
+    pub noise: NoiseView,
 }
 
 impl Default for Persisted {
@@ -86,6 +97,7 @@ impl Default for Persisted {
             stop_at_spp: None,
             per_term_exr: false,
             export_dir: ".".into(),
+            noise: NoiseView::default(),
         }
     }
 }
@@ -135,6 +147,11 @@ pub struct LumiereApp {
     /// Number of the worker now rendering A (each spawn takes the next).
     renderer_serial: u64,
     spawned: u64,
+    noise_view: noise_view::NoiseViewState,
+    /// The pixel probe: its pixel, result and job.
+    pub probe: probe_view::ProbeState,
+    /// A click on the image probes the pixel instead of selecting the object.
+    pub probe_tool: bool,
 }
 
 impl LumiereApp {
@@ -143,6 +160,10 @@ impl LumiereApp {
         let mut state = Persisted {
             settings: options.settings.clone(),
             display: options.display,
+            noise: NoiseView {
+                mode: options.display_mode,
+                ..NoiseView::default()
+            },
             ..Persisted::default()
         };
         if options.restore
@@ -167,6 +188,10 @@ impl LumiereApp {
             stop_at_spp: options.exit_after_spp.or(state.stop_at_spp),
         };
         let renderer = ProgressiveRenderer::spawn(request.clone(), move || ctx.request_repaint());
+        let mut probe = probe_view::ProbeState::default();
+        if let Some((x, y)) = options.probe {
+            probe.pick(x, y);
+        }
         let mut app = Self {
             message: scene.warnings.first().map(|w| format!("warning: {w}")),
             state,
@@ -195,6 +220,9 @@ impl LumiereApp {
             compare: split::Compare::default(),
             renderer_serial: 1,
             spawned: 1,
+            noise_view: noise_view::NoiseViewState::default(),
+            probe,
+            probe_tool: false,
         };
         app.errors.show_plot = options.convergence_plot;
         if let Some(estimator) = options.compare {
@@ -258,6 +286,31 @@ impl LumiereApp {
         self.renderer.snapshot()
     }
 
+    /// The noise view shown, if any: the mode is not the image and its
+    /// false colour is ready (it can be one snapshot old).
+    pub fn noise_image(&self) -> Option<Arc<crate::noise::FalseColour>> {
+        self.noise_view
+            .image(self.state.noise)
+            .map(|(_, image)| image)
+    }
+
+    /// Recomputes the noise view and the probe when the snapshot or the view changed.
+    fn update_views(&mut self, ctx: &egui::Context, snapshot: &Snapshot) {
+        if self.reference.is_none() && self.state.noise.mode == DisplayMode::Difference {
+            self.state.noise.mode = DisplayMode::Image;
+        }
+        self.noise_view.update(
+            ctx,
+            self.state.noise,
+            self.sent.settings.terms,
+            snapshot.generation,
+            self.renderer.film(),
+            self.reference.as_ref(),
+        );
+        self.probe
+            .update(ctx, &self.sent, snapshot.generation, self.renderer.film());
+    }
+
     /// Replaces the scene by the one at `spec`; on failure keeps the current one.
     pub fn load_scene(&mut self, spec: &str) {
         match builtin::load(spec) {
@@ -283,6 +336,15 @@ impl LumiereApp {
             return;
         };
         if snapshot.preview || snapshot.samples_per_pixel() < target || !split::settled(self) {
+            return;
+        }
+        // the noise view and the probe catch up with the last pass first
+        if !self
+            .noise_view
+            .is_current(self.state.noise, snapshot.generation)
+            || !self.probe.is_settled(snapshot.samples_per_pixel())
+        {
+            ctx.request_repaint_after(std::time::Duration::from_millis(20));
             return;
         }
         let Some(path) = self.screenshot.clone() else {
@@ -433,9 +495,11 @@ impl eframe::App for LumiereApp {
         }
         panels::status_bar(self, ui, &snapshot);
         panels::side_panel(self, ui);
+        self.update_views(&ctx, &snapshot);
         let shown = split::shown_snapshot(self, &snapshot);
         self.image_rect = Some(panels::viewport(self, ui, &shown));
         convergence::plot_window(self, &ctx);
+        probe_view::probe_window(&ctx, &mut self.probe);
         self.bench_step(&ctx, &snapshot, started);
         self.sync_renderer();
         split::sync(self, &ctx);

@@ -4,7 +4,10 @@
 
 use eframe::egui;
 
+use super::noise_view::{self, LEGEND_HEIGHT};
+use super::probe_view::{self, ImageMapping};
 use super::{LumiereApp, display, interact, reference, split};
+use crate::noise::{DisplayMode, NoiseSource, Scale};
 use crate::progressive::Snapshot;
 use crate::settings::{
     BrdfOverride, IndirectSampling, LightMode, LightSampling, LightSelection,
@@ -30,7 +33,7 @@ fn term_tooltip(term: Term) -> &'static str {
 }
 
 /// Keyboard: 0–3 toggle L0–L3+, L cycles the light mode, B the BRDF,
-/// Space pauses, Ctrl+S saves a screenshot.
+/// V the display mode, P the probe tool, Space pauses, Ctrl+S saves a screenshot.
 pub fn shortcuts(app: &mut LumiereApp, ctx: &egui::Context) {
     if ctx.egui_wants_keyboard_input() {
         return;
@@ -55,6 +58,14 @@ pub fn shortcuts(app: &mut LumiereApp, ctx: &egui::Context) {
     }
     if pressed(egui::Key::Space) {
         app.paused = !app.paused;
+    }
+    if pressed(egui::Key::V) {
+        let modes: Vec<DisplayMode> =
+            noise_view::available_modes(app.reference.is_some()).collect();
+        app.state.noise.mode = next(&modes, app.state.noise.mode);
+    }
+    if pressed(egui::Key::P) {
+        app.probe_tool = !app.probe_tool;
     }
     if ctx.input_mut(|i| i.consume_key(egui::Modifiers::COMMAND, egui::Key::S)) {
         app.save_screenshot();
@@ -405,7 +416,64 @@ fn display_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                         ui.selectable_value(&mut display.tonemap, tonemap, tonemap.label());
                     }
                 });
+            noise_ui(app, ui);
         });
+}
+
+/// The display mode (image or a noise view), whose samples, the scale, the probe tool.
+fn noise_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+    let has_reference = app.reference.is_some();
+    let noise = &mut app.state.noise;
+    ui.horizontal(|ui| {
+        egui::ComboBox::from_label("mode")
+            .selected_text(noise.mode.title())
+            .show_ui(ui, |ui| {
+                for mode in noise_view::available_modes(has_reference) {
+                    ui.selectable_value(&mut noise.mode, mode, mode.title());
+                }
+            })
+            .response
+            .on_hover_text(
+                "V: the image, or the noise of each pixel's luminance in false colour\n\
+                 (standard error, relative error, samples per pixel; image − reference with a reference)",
+            );
+        ui.add_enabled_ui(noise_view::has_source(noise.mode), |ui| {
+            egui::ComboBox::from_label("of")
+                .selected_text(noise.source.label())
+                .show_ui(ui, |ui| {
+                    for source in NoiseSource::ALL {
+                        ui.selectable_value(&mut noise.source, source, source.label());
+                    }
+                })
+                .response
+                .on_hover_text(
+                    "One term, or the visible terms summed (their errors add in quadrature)",
+                );
+        });
+    });
+    ui.horizontal(|ui| {
+        let can_log = matches!(
+            noise.mode,
+            DisplayMode::StandardError | DisplayMode::RelativeError
+        );
+        let mut log = noise.scale == Scale::Log;
+        if ui
+            .add_enabled(can_log, egui::Checkbox::new(&mut log, "log scale"))
+            .on_hover_text("Colours by orders of magnitude, from the 1st to the 99th percentile")
+            .changed()
+        {
+            noise.scale = if log { Scale::Log } else { Scale::Linear };
+        }
+        ui.toggle_value(&mut app.probe_tool, "Probe").on_hover_text(
+            "P: a click on the image probes the pixel instead of selecting an object (Ctrl+click always probes)",
+        );
+        if app.probe.pixel.is_some() && ui.button("Clear probe").clicked() {
+            app.probe.close();
+        }
+    });
+    if let Some(problem) = &app.noise_view.problem {
+        ui.colored_label(ui.visuals().warn_fg_color, problem);
+    }
 }
 
 fn render_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
@@ -500,7 +568,14 @@ pub fn viewport(
     egui::CentralPanel::default()
         .frame(egui::Frame::new().fill(egui::Color32::from_gray(24)))
         .show(ui, |ui| {
-            let available = ui.available_rect_before_wrap();
+            let mut available = ui.available_rect_before_wrap();
+            let noise = app.noise_view.image(app.state.noise);
+            let legend = noise.as_ref().map(|_| {
+                let (rest, strip) =
+                    available.split_top_bottom_at_y(available.bottom() - LEGEND_HEIGHT);
+                available = rest;
+                strip
+            });
             let settings = &app.state.settings;
             let ppp = ui.ctx().pixels_per_point();
             let film = egui::vec2(settings.width as f32, settings.height as f32);
@@ -523,10 +598,33 @@ pub fn viewport(
                 ((centred.min.to_vec2() * ppp).round() / ppp).to_pos2(),
                 ((centred.max.to_vec2() * ppp).round() / ppp).to_pos2(),
             );
+            let mapping = ImageMapping {
+                rect,
+                width: settings.width,
+                height: settings.height,
+            };
             let response = ui.allocate_rect(available, egui::Sense::click_and_drag());
-            interact::viewport_input(app, &response, rect);
-            if !snapshot.radiance.is_empty() {
-                display::paint_image(ui, rect, std::sync::Arc::clone(snapshot), app.state.display);
+            interact::viewport_input(app, &response, &mapping);
+            let source = match &noise {
+                Some((serial, image)) => Some(display::ImageSource::FalseColour {
+                    serial: *serial,
+                    image: std::sync::Arc::clone(image),
+                }),
+                None => (!snapshot.radiance.is_empty())
+                    .then(|| display::ImageSource::Radiance(std::sync::Arc::clone(snapshot))),
+            };
+            if let Some(source) = source {
+                display::paint_image(ui, rect, source, app.state.display);
+            }
+            probe_view::paint_overlay(&ui.painter_at(available), &mapping, &app.probe);
+            if let (Some(strip), Some((_, image))) = (legend, &noise) {
+                noise_view::legend_ui(
+                    ui,
+                    strip,
+                    image,
+                    app.sent.settings.terms,
+                    app.reference.as_deref(),
+                );
             }
             split::overlay_ui(app, ui, rect);
             rect

@@ -1,0 +1,406 @@
+//! The pixel probe on screen: a click picks a pixel, a thread traces its
+//! samples again (`crate::probe`), a window shows each visible term's
+//! statistics and the histogram of its sample luminance, and a marker shows
+//! the pixel on the image.
+//!
+//! The probe keeps its own render context (lights and BVH built for the
+//! scene being rendered), rebuilt only when the scene or the light mode
+//! changes. It refreshes itself as the film gains samples, at most every
+//! [`REFRESH_INTERVAL`].
+
+use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use eframe::egui;
+use egui_plot::{Bar, BarChart, Plot, VLine};
+
+use crate::camera::CameraRays;
+use crate::film::Film;
+use crate::integrator::RenderContext;
+use crate::probe::{FilmPixel, MAX_PROBE_SAMPLES, PixelProbe, TermProbe, trace_pixel};
+use crate::progressive::ViewRequest;
+use crate::scene::Scene;
+use crate::settings::{LightMode, Term};
+
+/// Shortest time between two refreshes of the probe while the film converges.
+pub const REFRESH_INTERVAL: Duration = Duration::from_millis(500);
+
+/// Bins of the histograms.
+const HISTOGRAM_BINS: usize = 40;
+
+/// Where the image is on screen and how film pixels map to it: what an
+/// overlay painter needs.
+#[derive(Clone, Copy, Debug)]
+pub struct ImageMapping {
+    /// The image's rectangle, in points.
+    pub rect: egui::Rect,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl ImageMapping {
+    /// The screen point of film coordinates (`x`, `y`) (pixel centres at +0.5).
+    pub fn pixel_to_screen(&self, x: f32, y: f32) -> egui::Pos2 {
+        self.rect.min
+            + egui::vec2(
+                x / self.width as f32 * self.rect.width(),
+                y / self.height as f32 * self.rect.height(),
+            )
+    }
+
+    /// The film pixel under screen point `pos`, if it is on the image.
+    pub fn screen_to_pixel(&self, pos: egui::Pos2) -> Option<(u32, u32)> {
+        if !self.rect.contains(pos) {
+            return None;
+        }
+        let uv = (pos - self.rect.min) / self.rect.size();
+        let x = ((uv.x * self.width as f32) as u32).min(self.width - 1);
+        let y = ((uv.y * self.height as f32) as u32).min(self.height - 1);
+        Some((x, y))
+    }
+
+    /// The screen rectangle of film pixel (`x`, `y`).
+    pub fn pixel_rect(&self, x: u32, y: u32) -> egui::Rect {
+        egui::Rect::from_min_max(
+            self.pixel_to_screen(x as f32, y as f32),
+            self.pixel_to_screen(x as f32 + 1.0, y as f32 + 1.0),
+        )
+    }
+}
+
+/// A render context for probing, and what it was built for.
+struct ProbeContext {
+    scene: Arc<Scene>,
+    light_mode: LightMode,
+    light_radius: Option<f32>,
+    context: RenderContext,
+}
+
+/// A finished probe.
+pub struct ProbeResult {
+    pub probe: PixelProbe,
+    /// Time to read the film and trace the samples again.
+    pub duration: Duration,
+    /// Samples per pixel of the film when it was read (the fewest among the probed terms).
+    pub samples_per_pixel: u32,
+}
+
+/// The probed pixel, its latest result and the job computing the next.
+#[derive(Default)]
+pub struct ProbeState {
+    /// The pixel picked last; `None`: no probe.
+    pub pixel: Option<(u32, u32)>,
+    pub result: Option<Arc<ProbeResult>>,
+    job: Option<JoinHandle<Option<ProbeResult>>>,
+    /// Film generation and spp the last job was started for.
+    started_for: Option<((u32, u32), u64)>,
+    started_at: Option<Instant>,
+    cache: Arc<Mutex<Option<ProbeContext>>>,
+}
+
+impl ProbeState {
+    /// Probes pixel (`x`, `y`) from now on.
+    pub fn pick(&mut self, x: u32, y: u32) {
+        self.pixel = Some((x, y));
+        self.result = None;
+        self.started_for = None;
+    }
+
+    pub fn close(&mut self) {
+        self.pixel = None;
+        self.result = None;
+        self.started_for = None;
+    }
+
+    /// Whether the result shown is for the current pixel at `samples_per_pixel`
+    /// and no job runs (for scripted screenshots).
+    pub fn is_settled(&self, samples_per_pixel: u32) -> bool {
+        self.pixel.is_none()
+            || (self.job.is_none()
+                && self
+                    .result
+                    .as_ref()
+                    .is_some_and(|r| r.samples_per_pixel == samples_per_pixel))
+    }
+
+    /// Collects a finished job; starts one when the pixel changed, or the
+    /// film (`generation`) did and the last refresh is old enough.
+    pub fn update(
+        &mut self,
+        ctx: &egui::Context,
+        request: &ViewRequest,
+        generation: u64,
+        film: Option<Arc<Mutex<Film>>>,
+    ) {
+        if self.job.as_ref().is_some_and(|j| j.is_finished())
+            && let Some(job) = self.job.take()
+        {
+            let result = job.join().ok().flatten();
+            // a result for a pixel picked since is dropped
+            if let Some(result) = result.filter(|r| Some((r.probe.x, r.probe.y)) == self.pixel) {
+                self.result = Some(Arc::new(result));
+            }
+        }
+        let Some(pixel) = self.pixel else {
+            return;
+        };
+        if self.job.is_some() || self.started_for == Some((pixel, generation)) {
+            return;
+        }
+        let pixel_changed = self.started_for.is_none_or(|(p, _)| p != pixel);
+        let recent = self
+            .started_at
+            .is_some_and(|t| t.elapsed() < REFRESH_INTERVAL);
+        if !pixel_changed && recent {
+            // come back when the refresh is due
+            ctx.request_repaint_after(REFRESH_INTERVAL);
+            return;
+        }
+        let Some(film) = film else {
+            return;
+        };
+        let request = request.clone();
+        let cache = Arc::clone(&self.cache);
+        let repaint = ctx.clone();
+        self.started_for = Some((pixel, generation));
+        self.started_at = Some(Instant::now());
+        self.job = Some(
+            std::thread::Builder::new()
+                .name("lumiere probe".into())
+                .spawn(move || {
+                    let result = run_probe(&request, &film, &cache, pixel);
+                    repaint.request_repaint();
+                    result
+                })
+                .expect("cannot start a thread"),
+        );
+    }
+}
+
+/// Reads the pixel from the film and traces its samples again.
+fn run_probe(
+    request: &ViewRequest,
+    film: &Mutex<Film>,
+    cache: &Mutex<Option<ProbeContext>>,
+    (x, y): (u32, u32),
+) -> Option<ProbeResult> {
+    let started = Instant::now();
+    let settings = &request.settings;
+    let terms = settings.terms;
+    let (pixel, samples_per_pixel) = {
+        let film = film.lock().unwrap_or_else(|p| p.into_inner());
+        if x >= film.width || y >= film.height {
+            return None;
+        }
+        let spp = terms.iter().map(|t| film.samples(t)).min().unwrap_or(0);
+        (FilmPixel::read(&film, x, y, terms, MAX_PROBE_SAMPLES), spp)
+    };
+    let mut cache = cache.lock().unwrap_or_else(|p| p.into_inner());
+    let fresh = cache.as_ref().is_some_and(|c| {
+        Arc::ptr_eq(&c.scene, &request.scene)
+            && c.light_mode == settings.light_mode
+            && c.light_radius == settings.light_radius
+    });
+    if !fresh {
+        *cache = Some(ProbeContext {
+            scene: Arc::clone(&request.scene),
+            light_mode: settings.light_mode,
+            light_radius: settings.light_radius,
+            context: RenderContext::new(Arc::clone(&request.scene), settings.clone()),
+        });
+    }
+    let probe_context = cache.as_mut()?;
+    let context = &mut probe_context.context;
+    context.settings = settings.clone();
+    context.camera = CameraRays::new(&request.camera, settings.width, settings.height);
+    let probe = trace_pixel(context, &pixel);
+    Some(ProbeResult {
+        probe,
+        duration: started.elapsed(),
+        samples_per_pixel,
+    })
+}
+
+/// The marker of the probed pixel, and whatever else is drawn over the image.
+pub fn paint_overlay(painter: &egui::Painter, mapping: &ImageMapping, probe: &ProbeState) {
+    let Some((x, y)) = probe.pixel else {
+        return;
+    };
+    if x >= mapping.width || y >= mapping.height {
+        return;
+    }
+    // at least a few points wide, so the pixel is visible when the image is fitted
+    let pixel = mapping.pixel_rect(x, y);
+    let marker =
+        egui::Rect::from_center_size(pixel.center(), pixel.size().max(egui::vec2(7.0, 7.0)));
+    painter.rect_stroke(
+        marker.expand(1.0),
+        0.0,
+        egui::Stroke::new(1.0, egui::Color32::BLACK),
+        egui::StrokeKind::Outside,
+    );
+    painter.rect_stroke(
+        marker,
+        0.0,
+        egui::Stroke::new(1.5, egui::Color32::YELLOW),
+        egui::StrokeKind::Outside,
+    );
+    let c = marker.center();
+    let reach = marker.width() / 2.0 + 8.0;
+    for (from, to) in [
+        (c - egui::vec2(reach, 0.0), c - egui::vec2(reach - 5.0, 0.0)),
+        (c + egui::vec2(reach - 5.0, 0.0), c + egui::vec2(reach, 0.0)),
+        (c - egui::vec2(0.0, reach), c - egui::vec2(0.0, reach - 5.0)),
+        (c + egui::vec2(0.0, reach - 5.0), c + egui::vec2(0.0, reach)),
+    ] {
+        painter.line_segment([from, to], egui::Stroke::new(1.5, egui::Color32::YELLOW));
+    }
+}
+
+/// The probe's window; closing it ends the probe.
+pub fn probe_window(ctx: &egui::Context, probe: &mut ProbeState) {
+    let Some((x, y)) = probe.pixel else {
+        return;
+    };
+    let mut open = true;
+    egui::Window::new("Pixel probe")
+        .open(&mut open)
+        .default_pos(ctx.content_rect().right_top() + egui::vec2(-380.0, 40.0))
+        .default_width(340.0)
+        .resizable(true)
+        .show(ctx, |ui| {
+            ui.label(format!("pixel ({x}, {y})"));
+            let Some(result) = probe.result.clone() else {
+                ui.spinner();
+                return;
+            };
+            ui.label(
+                egui::RichText::new(format!(
+                    "{} spp · traced again in {:.1} ms ({} rays)",
+                    result.samples_per_pixel,
+                    result.duration.as_secs_f64() * 1e3,
+                    result.probe.rays.total()
+                ))
+                .weak()
+                .small(),
+            );
+            if result.probe.terms.is_empty() {
+                ui.label("no samples yet");
+            }
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                for term in &result.probe.terms {
+                    term_ui(ui, term);
+                }
+            });
+        });
+    if !open {
+        probe.close();
+    }
+}
+
+/// Statistics and histogram of one term of the probed pixel.
+fn term_ui(ui: &mut egui::Ui, term: &TermProbe) {
+    ui.separator();
+    ui.strong(format!(
+        "{} — {}",
+        term.term.label(),
+        term.term.description()
+    ));
+    let (lo, hi) = term.interval_95();
+    egui::Grid::new(("probe", term.term.index()))
+        .num_columns(2)
+        .striped(true)
+        .show(ui, |ui| {
+            let mut row = |name: &str, value: String, hint: &str| {
+                ui.label(name).on_hover_text(hint);
+                ui.label(value);
+                ui.end_row();
+            };
+            let m = term.mean;
+            row(
+                "mean RGB",
+                format!("{:.4}, {:.4}, {:.4}", m.x, m.y, m.z),
+                "Mean radiance per channel, W/(m²·sr)",
+            );
+            row(
+                "mean luminance",
+                format!("{:.4}", term.mean_luminance()),
+                "Ȳ = Σ Y / N, W/(m²·sr)",
+            );
+            row(
+                "standard error",
+                format!("{:.4}", term.standard_error),
+                "se = √(s² / N): the noise of the mean; it falls as 1/√N",
+            );
+            row(
+                "95% interval",
+                format!("{lo:.4} … {hi:.4}"),
+                "Ȳ ± 1.96 se: where the converged value lies, 19 times out of 20",
+            );
+            row(
+                "N",
+                term.film_samples.to_string(),
+                "Samples of this term in the pixel",
+            );
+            row(
+                "largest sample",
+                format!("{:.1}% of the sum", 100.0 * term.largest_share),
+                "max Y / Σ Y: close to 100%, one sample (a firefly) makes the pixel",
+            );
+        });
+    if !term.is_complete() {
+        ui.label(
+            egui::RichText::new(format!(
+                "statistics of the first {} of {} samples",
+                term.samples.len(),
+                term.film_samples
+            ))
+            .weak()
+            .small(),
+        );
+    } else if !term.reproduces_film() {
+        ui.colored_label(
+            ui.visuals().warn_fg_color,
+            "these samples differ from the film's (it has changed since): probing again",
+        );
+    }
+    histogram_ui(ui, term);
+}
+
+fn histogram_ui(ui: &mut egui::Ui, term: &TermProbe) {
+    let histogram = term.histogram(HISTOGRAM_BINS);
+    let width = histogram.bin_width;
+    let bars: Vec<Bar> = histogram
+        .counts
+        .iter()
+        .enumerate()
+        .map(|(k, &count)| Bar::new((k as f64 + 0.5) * width, count as f64).width(width))
+        .collect();
+    let colour = term_colour(term.term);
+    Plot::new(("probe histogram", term.term.index()))
+        .height(90.0)
+        .allow_drag(false)
+        .allow_zoom(false)
+        .allow_scroll(false)
+        .allow_boxed_zoom(false)
+        .show_y(false)
+        .include_y(0.0)
+        .x_axis_label("sample luminance")
+        .show(ui, |plot| {
+            plot.bar_chart(BarChart::new("samples", bars).color(colour));
+            plot.vline(
+                VLine::new("mean", term.mean_luminance())
+                    .stroke(egui::Stroke::new(1.5, egui::Color32::WHITE)),
+            );
+        });
+}
+
+fn term_colour(term: Term) -> egui::Color32 {
+    match term {
+        Term::L0 => egui::Color32::from_rgb(230, 180, 60),
+        Term::L1 => egui::Color32::from_rgb(90, 160, 230),
+        Term::L2 => egui::Color32::from_rgb(110, 200, 120),
+        Term::L3Plus => egui::Color32::from_rgb(200, 120, 200),
+    }
+}
