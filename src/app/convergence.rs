@@ -20,7 +20,7 @@ pub fn plot_window(app: &mut LumiereApp, ctx: &egui::Context) {
     egui::Window::new("Convergence")
         .open(&mut open)
         .default_size([620.0, 480.0])
-        .default_pos([330.0, 60.0])
+        .default_pos([440.0, 300.0])
         .show(ctx, |ui| plot_ui(app, ui));
     app.errors.show_plot = open;
 }
@@ -140,10 +140,12 @@ fn decade_marks(input: GridInput) -> Vec<GridMark> {
     let mut marks = Vec::new();
     let mut k = (low / step).floor() * step;
     while k <= high {
-        marks.push(GridMark {
-            value: k,
-            step_size: step,
-        });
+        if k >= low {
+            marks.push(GridMark {
+                value: k,
+                step_size: step,
+            });
+        }
         if minor {
             for m in 2..10 {
                 let value = k + (m as f64).log10();
