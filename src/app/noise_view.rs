@@ -13,7 +13,9 @@ use eframe::egui;
 
 use crate::film::Film;
 use crate::metrics::ReferenceImage;
-use crate::noise::{self, DisplayMode, FalseColour, NO_VALUE_SRGB, NoiseSource, NoiseView, Scale};
+use crate::noise::{
+    self, DisplayMode, FalseColour, NO_VALUE_SRGB, NoiseSource, NoiseView, Scale, Unit,
+};
 use crate::settings::TermSet;
 
 /// Height of the legend strip under the image, in points.
@@ -175,10 +177,12 @@ pub fn legend_title(
     format!("{} {of}\n{}{scale}", view.mode.title(), image.unit.symbol())
 }
 
-/// A tick label: few digits, an exponent for tiny values.
-pub fn format_tick(value: f32) -> String {
+/// A tick label: few digits, an exponent for tiny values, whole sample counts.
+pub fn format_tick(value: f32, unit: Unit) -> String {
     let magnitude = value.abs();
-    if magnitude == 0.0 {
+    if unit == Unit::Samples || (unit == Unit::Percent && magnitude >= 10.0) {
+        format!("{value:.0}")
+    } else if magnitude == 0.0 {
         "0".into()
     } else if magnitude >= 100.0 {
         format!("{value:.0}")
@@ -208,13 +212,12 @@ pub fn legend_ui(
     let painter = ui.painter_at(rect);
     painter.rect_filled(rect, 0.0, egui::Color32::from_gray(16));
     let title_rect = egui::Rect::from_min_size(
-        rect.min + egui::vec2(8.0, 4.0),
-        egui::vec2(230.0, rect.height() - 8.0),
+        rect.min + egui::vec2(10.0, 5.0),
+        egui::vec2(250.0, rect.height() - 8.0),
     );
-    ui.put(
-        title_rect,
-        egui::Label::new(egui::RichText::new(legend_title(image, visible, reference)).small()),
-    );
+    ui.scope_builder(egui::UiBuilder::new().max_rect(title_rect), |ui| {
+        ui.add(egui::Label::new(legend_title(image, visible, reference)).extend());
+    });
     let bar_left = title_rect.right() + 12.0;
     let bar_right = (rect.right() - 110.0).min(bar_left + 480.0);
     if bar_right <= bar_left + 40.0 {
@@ -255,7 +258,7 @@ pub fn legend_ui(
         painter.text(
             egui::pos2(x, bar.bottom() + 5.0),
             align,
-            format_tick(image.value_at(t)),
+            format_tick(image.value_at(t), image.unit),
             font.clone(),
             text,
         );
