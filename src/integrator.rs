@@ -259,7 +259,9 @@ struct Vertex {
 }
 
 /// The state of one sample: the context it reads, the counters and the log
-/// it writes, and the radiance gathered so far.
+/// it writes, and the radiance gathered so far. Its small steps are inlined
+/// into the path loop (`#[inline(always)]`): split apart, the per-vertex
+/// calls and moves cost the defaults several percent.
 struct Walk<'a> {
     context: &'a RenderContext,
     counts: &'a mut RayCounts,
@@ -298,16 +300,16 @@ impl<'a> Walk<'a> {
         self.counts.camera += 1;
         self.counts.per_term[lowest_selected(self.terms, 0)] += 1;
         let first = self.follow(ray, 0, Vec3::ONE, EmissionWeight::One, SegmentKind::Camera);
-        let Some(first) = first else {
+        let Some(first) = &first else {
             return self.radiance;
         };
         let splits = self.context.settings.indirect_samples.max(1);
-        let gather = self.gather_plan(&first, splits);
-        self.direct_lighting(&first, Vec3::ONE, stream, gather);
-        let share = Vec3::splat(1.0 / splits as f32);
+        let gather = self.gather_plan(first, splits);
+        self.direct_lighting(first, Vec3::ONE, stream, gather);
         for m in 0..splits {
             let stream = stream.split(m, splits);
-            if let Some((vertex, throughput)) = self.continuation(&first, share, &stream, gather) {
+            let mut throughput = Vec3::splat(1.0 / splits as f32);
+            if let Some(vertex) = self.continuation(first, &mut throughput, &stream, gather) {
                 self.rest_of_path(vertex, throughput, &stream);
             }
         }
@@ -315,12 +317,13 @@ impl<'a> Walk<'a> {
     }
 
     /// The path from `vertex` on: direct lighting and one continuation per vertex.
+    #[inline]
     fn rest_of_path(&mut self, mut vertex: Vertex, mut throughput: Vec3, stream: &SampleStream) {
         loop {
             let gather = self.gather_plan(&vertex, 1);
             self.direct_lighting(&vertex, throughput, stream, gather);
-            match self.continuation(&vertex, throughput, stream, gather) {
-                Some((next, next_throughput)) => (vertex, throughput) = (next, next_throughput),
+            match self.continuation(&vertex, &mut throughput, stream, gather) {
+                Some(next) => vertex = next,
                 None => return,
             }
         }
@@ -329,6 +332,7 @@ impl<'a> Walk<'a> {
     /// Traces `ray` (the path's segment number `reflections`, 0 from the
     /// camera), files the emission it meets with `weight`, and returns the
     /// vertex it reaches if the path may reflect there.
+    #[inline(always)]
     fn follow(
         &mut self,
         ray: Ray,
@@ -370,6 +374,7 @@ impl<'a> Walk<'a> {
 
     /// The vertex at `point` reached along -`wo` after `reflections`
     /// reflections, if a reflection there can serve a selected term.
+    #[inline(always)]
     fn vertex(&self, point: SurfacePoint, wo: Vec3, reflections: u32) -> Option<Vertex> {
         if reflections >= self.last_reflection {
             return None;
@@ -390,6 +395,7 @@ impl<'a> Walk<'a> {
     }
 
     /// Whether and how directions are gathered at `vertex`, which has `continuations`.
+    #[inline(always)]
     fn gather_plan(&self, vertex: &Vertex, continuations: u32) -> Gather {
         let settings = &self.context.settings;
         let gathering = self.can_hit_lights
@@ -412,6 +418,7 @@ impl<'a> Walk<'a> {
     // ── direct lighting ──────────────────────────────────────────────
 
     /// The light samples and separately gathered directions of `vertex`, filed under its next term.
+    #[inline]
     fn direct_lighting(
         &mut self,
         vertex: &Vertex,
@@ -445,6 +452,7 @@ impl<'a> Walk<'a> {
     }
 
     /// One light sample (next-event estimation) at `vertex`.
+    #[inline(always)]
     fn light_sample(&mut self, vertex: &Vertex, throughput: Vec3, stream: &SampleStream) {
         let context = self.context;
         let settings = &context.settings;
@@ -561,6 +569,7 @@ impl<'a> Walk<'a> {
     }
 
     /// The weight of an emission hit found by a gathered direction of density `pdf` at `vertex`.
+    #[inline]
     fn gather_weight(&self, vertex: &Vertex, pdf: f32) -> EmissionWeight {
         match self.context.settings.light_sampling {
             LightSampling::Mis => EmissionWeight::Mis {
@@ -575,6 +584,7 @@ impl<'a> Walk<'a> {
     // ── continuation ─────────────────────────────────────────────────
 
     /// The distribution the continuation at a vertex of `brdf` is drawn from.
+    #[inline(always)]
     fn continuation_directions(&self, brdf: &Brdf) -> Directions {
         if brdf.is_delta() {
             return Directions::Brdf;
@@ -586,15 +596,17 @@ impl<'a> Walk<'a> {
         }
     }
 
-    /// Draws and traces the next reflection from `vertex` (with `throughput`
-    /// there): the next vertex and its throughput, if the path goes on.
+    /// Draws and traces the next reflection from `vertex`, updating
+    /// `throughput` (β at `vertex`) to β at the next vertex: that vertex, if
+    /// the path goes on.
+    #[inline(always)]
     fn continuation(
         &mut self,
         vertex: &Vertex,
-        throughput: Vec3,
+        throughput: &mut Vec3,
         stream: &SampleStream,
         gather: Gather,
-    ) -> Option<(Vertex, Vec3)> {
+    ) -> Option<Vertex> {
         let next = vertex.index + 1;
         let delta = vertex.brdf.is_delta();
         // how the emission the continuation may hit is weighted (its pdf comes below)
@@ -624,7 +636,7 @@ impl<'a> Walk<'a> {
         } else {
             EmissionWeight::Zero
         };
-        let mut throughput = throughput * sample.weight;
+        *throughput *= sample.weight;
 
         // russian roulette after the third reflection
         if next >= 3 {
@@ -632,18 +644,18 @@ impl<'a> Walk<'a> {
             if stream.uniform(base + dim::RUSSIAN_ROULETTE) >= survival {
                 return None;
             }
-            throughput /= survival;
+            *throughput /= survival;
         }
         self.counts.bounce += 1;
         self.counts.per_term[lowest_selected(self.terms, next)] += 1;
         let ray = vertex.point.spawn_ray(wi);
-        let next_vertex = self.follow(ray, next, throughput, weight, SegmentKind::Bounce)?;
-        Some((next_vertex, throughput))
+        self.follow(ray, next, *throughput, weight, SegmentKind::Bounce)
     }
 
     // ── emission ─────────────────────────────────────────────────────
 
     /// Radiance leaving emissive `point` towards unit `wo`, and its weight.
+    #[inline(always)]
     fn triangle_emission(
         &self,
         point: &SurfacePoint,
@@ -682,6 +694,7 @@ impl<'a> Walk<'a> {
     }
 
     /// The MIS weight of a strategy of density `pdf` against one of density `other`.
+    #[inline]
     fn mis(&self, pdf: f32, other: f32) -> f32 {
         match self.context.settings.mis_heuristic {
             MisHeuristic::Balance => balance_heuristic(pdf, other),
@@ -695,6 +708,7 @@ impl<'a> Walk<'a> {
         &self.context.accel
     }
 
+    #[inline(always)]
     fn record(&mut self, from: Vec3, to: Vec3, kind: SegmentKind, term: Term, radiance: Vec3) {
         if let Some(log) = self.log.as_deref_mut() {
             log.segments.push(PathSegment {
@@ -708,6 +722,7 @@ impl<'a> Walk<'a> {
     }
 
     /// Records a ray that left the scene (it added nothing).
+    #[cold]
     fn record_escape(&mut self, ray: &Ray, kind: SegmentKind, term: Term) {
         if self.log.is_some() {
             let length = self.context.scene.bounds().diagonal().max(1.0);
@@ -728,6 +743,7 @@ fn gather_directions(strategy: LightSampling) -> Option<Directions> {
 
 /// A direction (local frame) drawn from `directions` at a vertex of `brdf`
 /// seen from `wo`, with f cos θ / pdf and its pdf; `None` if it reflects nothing.
+#[inline(always)]
 fn draw_direction(
     brdf: &Brdf,
     wo: Vec3,

@@ -367,12 +367,14 @@ impl LightTable {
     }
 
     /// Picks a light from one uniform number: its index and probability.
+    #[inline]
     pub fn pick(&self, u_select: f32) -> Option<(usize, f32)> {
         self.selection.sample(u_select)
     }
 
     /// Draws a point or direction of light `index`, picked with probability
     /// `probability`, seen from `at` (the returned pdf includes the probability).
+    #[inline(always)]
     pub fn sample_light(
         &self,
         scene: &Scene,
@@ -528,6 +530,7 @@ fn triangle_area(scene: &Scene, triangle: u32) -> f32 {
 }
 
 /// Uniform point on an emissive triangle, as seen from `at`.
+#[inline]
 fn sample_triangle(
     scene: &Scene,
     at: &SurfacePoint,
@@ -541,6 +544,7 @@ fn sample_triangle(
 /// The light that point `b` (barycentrics) of emissive triangle `triangle`
 /// (of area `area`) sends to `at`, with the shadow ray between them and the
 /// solid-angle pdf of uniform area sampling.
+#[inline(always)]
 fn light_point_sample(
     scene: &Scene,
     at: &SurfacePoint,
