@@ -115,8 +115,8 @@ pub fn status_bar(app: &LumiereApp, ui: &mut egui::Ui, snapshot: &Snapshot) {
                 .map(|t| format!("{} {}", t.label(), rays.per_term[t.index()]))
                 .collect();
             ui.label(format!("rays: {}", per_term.join(", "))).on_hover_text(format!(
-                "Rays traced since the last restart, filed under the lowest term each serves.\nBy kind: {} camera, {} shadow, {} bounce",
-                rays.camera, rays.shadow, rays.bounce
+                "Rays traced since the last restart, filed under the lowest term each serves.\nBy kind: {} camera, {} shadow, {} gathered (to find lights), {} bounce",
+                rays.camera, rays.shadow, rays.gather, rays.bounce
             ));
             ui.separator();
             ui.label(state);
