@@ -4,10 +4,11 @@
 
 mod common;
 
+use common::{estimate, polygon_irradiance};
+
 use glam::Vec3;
 use lumiere::geometry::Ray;
-use lumiere::integrator::{RayCounts, RenderContext};
-use lumiere::sampling::SampleStream;
+use lumiere::integrator::RenderContext;
 use lumiere::scene::{Material, Scene};
 use lumiere::{LightMode, RenderSettings, Term, TermSet};
 
@@ -54,36 +55,6 @@ fn quad_over_plane(floor: Material, light_center: Vec3) -> Scene {
     scene
 }
 
-/// Irradiance at p (normal n) from a Lambertian polygon of radiance L:
-/// E = L/2 · |Σ θᵢ n·(vᵢ × vᵢ₊₁)/|vᵢ × vᵢ₊₁||  (Lambert, 1760).
-fn polygon_irradiance(p: Vec3, n: Vec3, corners: &[Vec3], radiance: f64) -> f64 {
-    let mut sum = 0.0f64;
-    for i in 0..corners.len() {
-        let a = (corners[i] - p).as_dvec3().normalize();
-        let b = (corners[(i + 1) % corners.len()] - p)
-            .as_dvec3()
-            .normalize();
-        let theta = a.dot(b).clamp(-1.0, 1.0).acos();
-        sum += theta * n.as_dvec3().dot(a.cross(b).normalize());
-    }
-    radiance / 2.0 * sum.abs()
-}
-
-/// Mean and standard error of a term along `ray` over `n` samples.
-fn estimate(context: &RenderContext, ray: Ray, term: Term, n: u64) -> (f64, f64) {
-    let (mut sum, mut sum2) = (0.0f64, 0.0f64);
-    let mut counts = RayCounts::default();
-    for i in 0..n {
-        let stream = SampleStream::new(11, 0, i);
-        let value = context.trace(ray, &stream, &mut counts)[term.index()].x as f64;
-        sum += value;
-        sum2 += value * value;
-    }
-    let mean = sum / n as f64;
-    let variance = (sum2 / n as f64 - mean * mean).max(0.0);
-    (mean, (variance / n as f64).sqrt())
-}
-
 /// A ray that reaches floor point (x, y, 0) from the side, below the light.
 fn ray_to_floor(x: f32, y: f32) -> Ray {
     let target = Vec3::new(x, y, 0.0);
@@ -106,7 +77,7 @@ fn quad_light_matches_lamberts_polygon_formula() {
         let p = Vec3::new(x, y, 0.0);
         let expected = ALBEDO as f64 / std::f64::consts::PI
             * polygon_irradiance(p, Vec3::Z, &light_corners(center), RADIANCE as f64);
-        let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 40_000);
+        let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 40_000, 11);
         common::assert_agrees(&format!("L1 at ({x}, {y})"), measured, expected, 4.0, 1e-5);
     }
 }
@@ -131,7 +102,7 @@ fn quad_light_as_a_point_matches_inverse_square_law() {
         let intensity = RADIANCE as f64 * area * cos_surface;
         let expected =
             ALBEDO as f64 / std::f64::consts::PI * intensity * cos_surface / (distance * distance);
-        let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 64);
+        let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 64, 11);
         common::assert_agrees(
             &format!("point L1 at ({x}, {y})"),
             measured,
@@ -155,9 +126,9 @@ fn mirror_shows_the_light_times_its_reflectance() {
     // origin (−1, 0, 0.5) → mirror at the origin → reflected to (2, 0, 1), the light's centre
     let origin = Vec3::new(-1.0, 0.0, 0.5);
     let ray = Ray::new(origin, (-origin).normalize(), f32::INFINITY);
-    let (l1, _) = estimate(&context, ray, Term::L1, 256);
-    let (l0, _) = estimate(&context, ray, Term::L0, 16);
-    let (l2, _) = estimate(&context, ray, Term::L2, 16);
+    let (l1, _) = estimate(&context, ray, Term::L1, 256, 11);
+    let (l0, _) = estimate(&context, ray, Term::L0, 16, 11);
+    let (l2, _) = estimate(&context, ray, Term::L2, 16, 11);
     let expected = (reflectance * RADIANCE) as f64;
     assert!(
         (l1 - expected).abs() < 1e-5 * expected,
@@ -200,13 +171,13 @@ fn spot_light_lights_its_cone_only() {
     let d2 = 4.0 + x * x;
     let cos = 2.0 / d2.sqrt();
     let expected = rho_over_pi * intensity as f64 * cos / d2;
-    let (inside, _) = estimate(&context, ray_to_floor(x as f32, 0.0), Term::L1, 4);
+    let (inside, _) = estimate(&context, ray_to_floor(x as f32, 0.0), Term::L1, 4, 11);
     assert!(
         (inside - expected).abs() < 1e-5 * expected,
         "inside the cone: {inside}, expected {expected}"
     );
     // outside the outer cone (tan 0.5 · 2 ≈ 1.09): nothing
-    let (outside, _) = estimate(&context, ray_to_floor(1.5, 0.0), Term::L1, 4);
+    let (outside, _) = estimate(&context, ray_to_floor(1.5, 0.0), Term::L1, 4, 11);
     assert_eq!(outside, 0.0);
 }
 
@@ -229,7 +200,7 @@ fn directional_light_gives_e_cos_theta() {
     let context = RenderContext::new(scene, settings);
     let expected =
         (ALBEDO / std::f32::consts::PI * irradiance * std::f32::consts::FRAC_1_SQRT_2) as f64;
-    let (measured, _) = estimate(&context, ray_to_floor(0.0, 0.0), Term::L1, 4);
+    let (measured, _) = estimate(&context, ray_to_floor(0.0, 0.0), Term::L1, 4, 11);
     assert!(
         (measured - expected).abs() < 1e-5 * expected,
         "{measured} vs {expected}"

@@ -7,7 +7,7 @@ mod common;
 
 use std::sync::Arc;
 
-use common::{assert_agrees, mean_and_error, small};
+use common::{assert_agrees, estimate, mean_and_error, polygon_irradiance, small};
 use glam::{DVec3, Vec2, Vec3};
 use lumiere::geometry::Ray;
 use lumiere::integrator::{PathLog, RayCounts, RenderContext, SegmentKind};
@@ -62,21 +62,6 @@ fn plane_under_lights(lights: &[(Vec3, f32)]) -> Scene {
     scene
 }
 
-/// Irradiance at p (normal n) from a Lambertian polygon of radiance L:
-/// E = L/2 · |Σ θᵢ n·(vᵢ × vᵢ₊₁)/|vᵢ × vᵢ₊₁||  (Lambert, 1760).
-fn polygon_irradiance(p: Vec3, n: Vec3, corners: &[Vec3], radiance: f64) -> f64 {
-    let mut sum = 0.0f64;
-    for i in 0..corners.len() {
-        let a = (corners[i] - p).as_dvec3().normalize();
-        let b = (corners[(i + 1) % corners.len()] - p)
-            .as_dvec3()
-            .normalize();
-        let theta = a.dot(b).clamp(-1.0, 1.0).acos();
-        sum += theta * n.as_dvec3().dot(a.cross(b).normalize());
-    }
-    radiance / 2.0 * sum.abs()
-}
-
 /// L1 of floor point (x, y, 0) under square lights of the given (centre, radiance).
 fn floor_l1(x: f32, y: f32, lights: &[(Vec3, f32)]) -> f64 {
     let p = Vec3::new(x, y, 0.0);
@@ -93,21 +78,6 @@ fn ray_to_floor(x: f32, y: f32) -> Ray {
     let target = Vec3::new(x, y, 0.0);
     let origin = target + Vec3::new(1.5, 0.3, 0.4);
     Ray::new(origin, (target - origin).normalize(), f32::INFINITY)
-}
-
-/// Mean and standard error of a term along `ray` over `n` samples.
-fn estimate(context: &RenderContext, ray: Ray, term: Term, n: u64) -> (f64, f64) {
-    let (mut sum, mut sum2) = (0.0f64, 0.0f64);
-    let mut counts = RayCounts::default();
-    for i in 0..n {
-        let stream = SampleStream::new(23, 0, i);
-        let value = context.trace(ray, &stream, &mut counts)[term.index()].x as f64;
-        sum += value;
-        sum2 += value * value;
-    }
-    let mean = sum / n as f64;
-    let variance = (sum2 / n as f64 - mean * mean).max(0.0);
-    (mean, (variance / n as f64).sqrt())
 }
 
 /// Renders a shared scene with `settings` at `spp` samples per pixel.
@@ -199,7 +169,7 @@ fn every_light_strategy_matches_lamberts_polygon_formula() {
     for settings in sets {
         let context = RenderContext::new(scene.clone(), settings.clone());
         for (x, y) in [(0.0, 0.0), (0.3, 0.1), (2.0, -1.0)] {
-            let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 20_000);
+            let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 20_000, 23);
             let what = format!("{} L1 at ({x}, {y})", describe(&settings));
             assert_agrees(&what, measured, floor_l1(x, y, &lights), 4.5, 1e-5);
         }
@@ -243,7 +213,7 @@ fn uniform_and_power_light_selection_agree_with_two_unequal_lights() {
                 assert!((p - e).abs() < 1e-5, "{selection}: {probabilities:?}");
             }
             for (x, y) in [(0.2, 0.0), (1.0, 0.6)] {
-                let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 20_000);
+                let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 20_000, 23);
                 let what = format!("{} L1 at ({x}, {y})", describe(&settings));
                 assert_agrees(&what, measured, floor_l1(x, y, &lights), 4.5, 1e-5);
             }
@@ -277,7 +247,7 @@ fn dirac_lights_are_light_sampled_by_every_strategy() {
             let expected =
                 ALBEDO as f64 / std::f64::consts::PI * RADIANCE as f64 * area * cos * cos
                     / d.length_squared();
-            let (measured, _) = estimate(&context, ray_to_floor(x, y), Term::L1, 16);
+            let (measured, _) = estimate(&context, ray_to_floor(x, y), Term::L1, 16, 23);
             assert!(
                 (measured - expected).abs() < 1e-5 * expected,
                 "{light_sampling} point L1 at ({x}, {y}): {measured}, expected {expected}"
@@ -310,7 +280,7 @@ fn dirac_lights_are_light_sampled_by_every_strategy() {
                 / d.length()
                 / d.length_squared();
             let expected = floor_l1(x, y, &[(center, RADIANCE)]) + from_point;
-            let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 20_000);
+            let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 20_000, 23);
             let what = format!("{} area + point L1 at ({x}, {y})", describe(&settings));
             assert_agrees(&what, measured, expected, 4.5, 1e-5);
         }

@@ -3,7 +3,11 @@
 
 use std::path::{Path, PathBuf};
 
+use glam::Vec3;
+use lumiere::geometry::Ray;
+use lumiere::integrator::RayCounts;
 use lumiere::render::{Budget, RenderStats, render};
+use lumiere::sampling::SampleStream;
 use lumiere::{Film, RenderContext, RenderSettings, Scene, Term, TermSet};
 
 /// Renders `scene` with `settings` at `spp` samples per pixel.
@@ -83,4 +87,34 @@ pub fn gltf_files(dir: &Path) -> Vec<PathBuf> {
     }
     files.sort();
     files
+}
+
+/// Irradiance at p (normal n) from a Lambertian polygon of radiance L:
+/// E = L/2 · |Σ θᵢ n·(vᵢ × vᵢ₊₁)/|vᵢ × vᵢ₊₁||  (Lambert, 1760).
+pub fn polygon_irradiance(p: Vec3, n: Vec3, corners: &[Vec3], radiance: f64) -> f64 {
+    let mut sum = 0.0f64;
+    for i in 0..corners.len() {
+        let a = (corners[i] - p).as_dvec3().normalize();
+        let b = (corners[(i + 1) % corners.len()] - p)
+            .as_dvec3()
+            .normalize();
+        let theta = a.dot(b).clamp(-1.0, 1.0).acos();
+        sum += theta * n.as_dvec3().dot(a.cross(b).normalize());
+    }
+    radiance / 2.0 * sum.abs()
+}
+
+/// Mean and standard error of a term along `ray` over `n` samples of seed `seed`.
+pub fn estimate(context: &RenderContext, ray: Ray, term: Term, n: u64, seed: u64) -> (f64, f64) {
+    let (mut sum, mut sum2) = (0.0f64, 0.0f64);
+    let mut counts = RayCounts::default();
+    for i in 0..n {
+        let stream = SampleStream::new(seed, 0, i);
+        let value = context.trace(ray, &stream, &mut counts)[term.index()].x as f64;
+        sum += value;
+        sum2 += value * value;
+    }
+    let mean = sum / n as f64;
+    let variance = (sum2 / n as f64 - mean * mean).max(0.0);
+    (mean, (variance / n as f64).sqrt())
 }
