@@ -38,6 +38,7 @@ pub mod integrator;
 pub mod lights;
 pub mod metrics;
 pub mod noise;
+pub mod path_view;
 pub mod probe;
 pub mod progressive;
 pub mod render;

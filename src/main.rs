@@ -15,6 +15,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use lumiere::camera::CameraRays;
 use lumiere::export::{ImageFormat, save_image};
 use lumiere::noise::DisplayMode;
+use lumiere::path_view::PathSample;
 use lumiere::render::{Budget, RenderStats, render};
 use lumiere::scene::Camera;
 use lumiere::scene::builtin;
@@ -190,6 +191,9 @@ struct ViewArgs {
     /// Probe the pixel at X,Y (from the top left) from the start.
     #[arg(long, value_parser = parse_pixel)]
     probe: Option<(u32, u32)>,
+    /// Which of the probed pixel's samples the path view draws: a number from 1, or `brightest`.
+    #[arg(long, default_value = "1", requires = "probe")]
+    probe_sample: PathSample,
     #[command(flatten)]
     options: SceneOptions,
 }
@@ -478,6 +482,7 @@ fn run_view(args: ViewArgs, restore: bool) -> Result<(), Failure> {
         convergence_plot: args.convergence_plot,
         display_mode: args.display_mode,
         probe: args.probe,
+        probe_sample: args.probe_sample,
     };
     lumiere::app::run(options).map_err(|e| runtime(anyhow::anyhow!(e)))
 }

@@ -22,7 +22,7 @@ use glam::{DVec3, Vec3};
 
 use crate::color::luminance;
 use crate::film::{Film, Welford};
-use crate::integrator::{RayCounts, RenderContext, TermRadiance};
+use crate::integrator::{PathLog, RayCounts, RenderContext, TermRadiance};
 use crate::render::sample_stream;
 use crate::settings::{Term, TermSet};
 
@@ -113,7 +113,13 @@ pub struct Histogram {
 pub struct PixelProbe {
     pub x: u32,
     pub y: u32,
+    /// Row-major index in the film.
+    pub index: usize,
     pub terms: Vec<TermProbe>,
+    /// The passes traced, in increasing order (the union over the terms).
+    pub passes: Vec<u32>,
+    /// Luminance of each pass's sample summed over the probed terms.
+    pub pass_luminance: Vec<f64>,
     /// Rays traced to probe it.
     pub rays: RayCounts,
 }
@@ -194,11 +200,47 @@ pub fn trace_pixel(context: &RenderContext, pixel: &FilmPixel) -> PixelProbe {
             )
         })
         .collect();
+    let mut passes: Vec<u32> = traced.keys().copied().collect();
+    passes.sort_unstable();
+    let probed = pixel.terms.iter().map(|t| t.term.index());
+    let pass_luminance = passes
+        .iter()
+        .map(|pass| {
+            let radiance = &traced[pass];
+            probed.clone().map(|t| luminance(radiance[t]) as f64).sum()
+        })
+        .collect();
     PixelProbe {
         x: pixel.x,
         y: pixel.y,
+        index: pixel.index,
         terms,
+        passes,
+        pass_luminance,
         rays,
+    }
+}
+
+impl PixelProbe {
+    /// The position in [`PixelProbe::passes`] of the sample of largest
+    /// luminance over the probed terms (the first of equals).
+    pub fn brightest(&self) -> Option<usize> {
+        let mut best: Option<(usize, f64)> = None;
+        for (k, &y) in self.pass_luminance.iter().enumerate() {
+            if best.is_none_or(|(_, b)| y > b) {
+                best = Some((k, y));
+            }
+        }
+        best.map(|(k, _)| k)
+    }
+
+    /// Traces again the sample of pass `pass` of this pixel, recording its rays.
+    /// `context` must be the one the probe was traced with.
+    pub fn record_path(&self, context: &RenderContext, pass: u32) -> PathLog {
+        let stream = sample_stream(&context.settings, self.index as u64, pass);
+        let mut log = PathLog::default();
+        context.trace_recorded(self.x, self.y, &stream, &mut RayCounts::default(), &mut log);
+        log
     }
 }
 

@@ -8,9 +8,11 @@ use std::time::{Duration, Instant};
 use eframe::egui;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
+use lumiere::app::probe_view::PROBE_WINDOW_ID;
 use lumiere::app::{LumiereApp, ViewOptions};
 use lumiere::metrics::ReferenceImage;
 use lumiere::noise::DisplayMode;
+use lumiere::path_view::RayRole;
 use lumiere::progressive::Snapshot;
 use lumiere::{BrdfOverride, LightMode, RenderSettings, Term};
 
@@ -462,8 +464,100 @@ fn a_probe_click_shows_the_pixel_statistics_with_n_equal_to_the_spp() {
     }
     let l1 = &result.probe.terms[1];
     assert!(l1.mean_luminance() > 0.0 && l1.standard_error > 0.0);
+    path_view_draws_the_sample_rays(&mut harness);
     // and the window closes
     harness.get_by_label("Clear probe").click();
     harness.run_steps(2);
     assert!(harness.query_by_label("Pixel probe").is_none());
+}
+
+/// The probed pixel's path view: the first sample's rays, drawn where they
+/// project; then the brightest sample; then hidden.
+fn path_view_draws_the_sample_rays(harness: &mut Harness<'static, LumiereApp>) {
+    wait_for_app(harness, "the path", |app| app.probe.path.recorded.is_some());
+    harness.run_steps(2);
+    harness.get_by_label("camera ray");
+    let recorded = harness.state().probe.path.recorded.as_ref().unwrap();
+    assert_eq!(recorded.position, 0);
+    assert_eq!(recorded.lines[0].role, RayRole::Camera);
+    let lines: Vec<(egui::Pos2, egui::Pos2)> = recorded
+        .lines
+        .iter()
+        .map(|l| (l.from, l.to))
+        .map(|(a, b)| (egui::pos2(a.x, a.y), egui::pos2(b.x, b.y)))
+        .collect();
+    assert!(
+        lines.len() >= 3,
+        "camera ray, shadow ray, bounce: {lines:?}"
+    );
+
+    // the pointer out of the way, and the probe window's place, where a
+    // click changes the window itself
+    let park_pointer = |harness: &mut Harness<'static, LumiereApp>| {
+        harness.event(egui::Event::PointerMoved(egui::pos2(2.0, 990.0)));
+        harness.run_steps(2);
+    };
+    park_pointer(harness);
+    let shown = WindowShot::take(harness);
+    harness.get_by_label("Draw its rays on the image").click();
+    park_pointer(harness);
+    assert!(harness.state().probe.path.hidden);
+    let hidden = WindowShot::take(harness);
+    let ppp = harness.ctx.pixels_per_point();
+    let window = harness
+        .ctx
+        .memory(|m| m.area_rect(egui::Id::unique(PROBE_WINDOW_ID)))
+        .expect("the probe window is shown")
+        * ppp;
+    // every pixel of the image the drawing changed lies on a projected ray
+    let rect = shown.image_rect;
+    let to_screen = |p: egui::Pos2| {
+        rect.min + egui::vec2(p.x / 64.0 * rect.width(), p.y / 48.0 * rect.height())
+    };
+    let distance = |q: egui::Pos2, (a, b): (egui::Pos2, egui::Pos2)| {
+        let (a, b) = (to_screen(a), to_screen(b));
+        let ab = b - a;
+        let t = ((q - a).dot(ab) / ab.length_sq().max(1e-6)).clamp(0.0, 1.0);
+        (a + ab * t - q).length()
+    };
+    let (mut changed, mut on_rays) = (0, 0);
+    for y in rect.min.y as u32..rect.max.y as u32 {
+        for x in rect.min.x as u32..rect.max.x as u32 {
+            let q = egui::pos2(x as f32 + 0.5, y as f32 + 0.5);
+            if window.expand(16.0).contains(q) {
+                continue;
+            }
+            if shown.window.get_pixel(x, y) != hidden.window.get_pixel(x, y) {
+                changed += 1;
+                // the camera ray is a ring of radius 5 points around its hit
+                if lines.iter().any(|&l| distance(q, l) < 9.0) {
+                    on_rays += 1;
+                }
+            }
+        }
+    }
+    assert!(changed > 200, "{changed} pixels drawn");
+    assert!(
+        on_rays as f64 >= 0.95 * changed as f64,
+        "{on_rays} of {changed} changed pixels lie on the rays"
+    );
+
+    harness.get_by_label("Draw its rays on the image").click();
+    harness.get_by_label("Brightest").click();
+    harness.run_steps(2);
+    wait_for_app(harness, "the brightest sample's path", |app| {
+        let probe = &app.probe;
+        let brightest = probe.result.as_ref().and_then(|r| r.probe.brightest());
+        probe.path.recorded.as_ref().map(|r| Some(r.position)) == Some(brightest)
+    });
+    let probe = &harness.state().probe;
+    let result = probe.result.as_ref().unwrap();
+    let position = probe.path.recorded.as_ref().unwrap().position;
+    let max = result
+        .probe
+        .pass_luminance
+        .iter()
+        .cloned()
+        .fold(0.0, f64::max);
+    assert_eq!(result.probe.pass_luminance[position], max);
 }

@@ -53,6 +53,8 @@ pub struct ViewOptions {
     pub display_mode: DisplayMode,
     /// A pixel to probe from the start.
     pub probe: Option<(u32, u32)>,
+    /// The probed sample whose path is drawn.
+    pub probe_sample: crate::path_view::PathSample,
 }
 
 impl Default for ViewOptions {
@@ -70,6 +72,7 @@ impl Default for ViewOptions {
             convergence_plot: false,
             display_mode: DisplayMode::Image,
             probe: None,
+            probe_sample: crate::path_view::PathSample::default(),
         }
     }
 }
@@ -189,6 +192,7 @@ impl LumiereApp {
         };
         let renderer = ProgressiveRenderer::spawn(request.clone(), move || ctx.request_repaint());
         let mut probe = probe_view::ProbeState::default();
+        probe.path.sample = options.probe_sample;
         if let Some((x, y)) = options.probe {
             probe.pick(x, y);
         }

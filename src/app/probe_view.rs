@@ -3,6 +3,10 @@
 //! statistics and the histogram of its sample luminance, and a marker shows
 //! the pixel on the image.
 //!
+//! The path view draws over the image the rays of one of the pixel's samples
+//! (`crate::path_view`): it is traced again on the UI thread (one sample: a
+//! few microseconds) with the probe's render context.
+//!
 //! The probe keeps its own render context (lights and BVH built for the
 //! scene being rendered), rebuilt only when the scene or the light mode
 //! changes. It refreshes itself as the film gains samples, at most every
@@ -17,14 +21,18 @@ use egui_plot::{Bar, BarChart, Plot, VLine};
 
 use crate::camera::CameraRays;
 use crate::film::Film;
-use crate::integrator::RenderContext;
+use crate::integrator::{PathLog, RenderContext};
+use crate::path_view::{PathLine, PathSample, RayRole, path_lines, segment_luminance};
 use crate::probe::{FilmPixel, MAX_PROBE_SAMPLES, PixelProbe, TermProbe, trace_pixel};
 use crate::progressive::ViewRequest;
 use crate::scene::Scene;
-use crate::settings::{LightMode, Term};
+use crate::settings::{LightMode, Term, TermSet};
 
 /// Shortest time between two refreshes of the probe while the film converges.
 pub const REFRESH_INTERVAL: Duration = Duration::from_millis(500);
+
+/// The probe window's id (its area's place in egui's memory).
+pub const PROBE_WINDOW_ID: &str = "lumiere pixel probe";
 
 /// Bins of the histograms.
 const HISTOGRAM_BINS: usize = 40;
@@ -84,6 +92,8 @@ pub struct ProbeResult {
     pub duration: Duration,
     /// Samples per pixel of the film when it was read (the fewest among the probed terms).
     pub samples_per_pixel: u32,
+    /// The terms rendered.
+    pub terms: TermSet,
 }
 
 /// The probed pixel, its latest result and the job computing the next.
@@ -97,6 +107,47 @@ pub struct ProbeState {
     started_for: Option<((u32, u32), u64)>,
     started_at: Option<Instant>,
     cache: Arc<Mutex<Option<ProbeContext>>>,
+    /// The path of one sample, drawn over the image.
+    pub path: PathView,
+}
+
+/// Which sample's path is drawn, and its rays.
+#[derive(Default)]
+pub struct PathView {
+    /// Whether the rays are drawn over the image.
+    pub hidden: bool,
+    /// The sample shown: a number, or the brightest (followed as the film grows).
+    pub sample: PathSample,
+    pub recorded: Option<RecordedPath>,
+}
+
+/// The rays of one traced sample, for the probe result they belong to.
+pub struct RecordedPath {
+    result: Arc<ProbeResult>,
+    /// Position of the sample among the probe's passes (from 0), and its pass.
+    pub position: usize,
+    pub pass: u32,
+    pub log: PathLog,
+    pub lines: Vec<PathLine>,
+}
+
+impl PathView {
+    /// Whether the recorded path is the one `result` and the choice of sample ask for.
+    fn is_current(&self, result: &Arc<ProbeResult>) -> bool {
+        self.recorded.as_ref().is_some_and(|r| {
+            Arc::ptr_eq(&r.result, result) && Some(r.position) == self.position(&result.probe)
+        })
+    }
+
+    /// The position among `probe`'s passes of the sample to show.
+    fn position(&self, probe: &PixelProbe) -> Option<usize> {
+        let count = probe.passes.len();
+        match self.sample {
+            _ if count == 0 => None,
+            PathSample::Number(n) => Some((n.max(1) as usize - 1).min(count - 1)),
+            PathSample::Brightest => probe.brightest(),
+        }
+    }
 }
 
 impl ProbeState {
@@ -111,6 +162,7 @@ impl ProbeState {
         self.pixel = None;
         self.result = None;
         self.started_for = None;
+        self.path.recorded = None;
     }
 
     /// Whether the result shown is for the current pixel at `samples_per_pixel`
@@ -118,10 +170,44 @@ impl ProbeState {
     pub fn is_settled(&self, samples_per_pixel: u32) -> bool {
         self.pixel.is_none()
             || (self.job.is_none()
-                && self
-                    .result
-                    .as_ref()
-                    .is_some_and(|r| r.samples_per_pixel == samples_per_pixel))
+                && self.result.as_ref().is_some_and(|r| {
+                    r.samples_per_pixel == samples_per_pixel
+                        && (self.path.hidden || self.path.is_current(r))
+                }))
+    }
+
+    /// Traces again the sample the path view shows, if it changed. Waits
+    /// (returns false) while a probe job holds the render context.
+    pub fn refresh_path(&mut self) -> bool {
+        let Some(result) = &self.result else {
+            self.path.recorded = None;
+            return true;
+        };
+        if self.path.hidden || self.path.is_current(result) {
+            return true;
+        }
+        let Some(position) = self.path.position(&result.probe) else {
+            self.path.recorded = None;
+            return true;
+        };
+        let Ok(cache) = self.cache.try_lock() else {
+            return false;
+        };
+        let Some(probe_context) = cache.as_ref() else {
+            return true;
+        };
+        let context = &probe_context.context;
+        let pass = result.probe.passes[position];
+        let log = result.probe.record_path(context, pass);
+        let lines = path_lines(&log, &context.camera, context.settings.terms);
+        self.path.recorded = Some(RecordedPath {
+            result: Arc::clone(result),
+            position,
+            pass,
+            log,
+            lines,
+        });
+        true
     }
 
     /// Collects a finished job; starts one when the pixel changed, or the
@@ -141,6 +227,10 @@ impl ProbeState {
             if let Some(result) = result.filter(|r| Some((r.probe.x, r.probe.y)) == self.pixel) {
                 self.result = Some(Arc::new(result));
             }
+        }
+        // before a new job takes the render context
+        if !self.refresh_path() {
+            ctx.request_repaint();
         }
         let Some(pixel) = self.pixel else {
             return;
@@ -219,6 +309,7 @@ fn run_probe(
         probe,
         duration: started.elapsed(),
         samples_per_pixel,
+        terms,
     })
 }
 
@@ -256,6 +347,59 @@ pub fn paint_overlay(painter: &egui::Painter, mapping: &ImageMapping, probe: &Pr
     ] {
         painter.line_segment([from, to], egui::Stroke::new(1.5, egui::Color32::YELLOW));
     }
+    if !probe.path.hidden
+        && let Some(path) = &probe.path.recorded
+    {
+        paint_path(&painter.with_clip_rect(mapping.rect), mapping, &path.lines);
+    }
+}
+
+/// The rays of one sample: each line over a dark outline so it shows on any image.
+fn paint_path(painter: &egui::Painter, mapping: &ImageMapping, lines: &[PathLine]) {
+    let screen = |p: glam::Vec2| mapping.pixel_to_screen(p.x, p.y);
+    let outline = egui::Color32::from_black_alpha(160);
+    for line in lines {
+        let (from, to) = (screen(line.from), screen(line.to));
+        let colour = role_colour(line.role);
+        if line.role == RayRole::Camera {
+            // seen end-on: the camera ray is a ring around its hit
+            painter.circle_stroke(to, 5.0, egui::Stroke::new(3.5, outline));
+            painter.circle_stroke(to, 5.0, egui::Stroke::new(2.0, colour));
+            continue;
+        }
+        let width = if matches!(line.role, RayRole::GatherMissed { .. }) {
+            1.0
+        } else {
+            2.0
+        };
+        if line.role.is_dashed() {
+            painter.add(egui::Shape::dashed_line(
+                &[from, to],
+                egui::Stroke::new(width, colour),
+                6.0,
+                4.0,
+            ));
+        } else {
+            painter.line_segment([from, to], egui::Stroke::new(width + 1.5, outline));
+            painter.line_segment([from, to], egui::Stroke::new(width, colour));
+        }
+        if line.ends_on_film && !matches!(line.role, RayRole::GatherMissed { .. }) {
+            painter.circle_filled(to, 3.0, colour);
+        }
+    }
+}
+
+/// The colour of a ray in the path view (`crate::path_view` lists them).
+pub fn role_colour(role: RayRole) -> egui::Color32 {
+    match role {
+        RayRole::Camera => egui::Color32::WHITE,
+        RayRole::ShadowBlocked { .. } => egui::Color32::from_rgb(235, 70, 60),
+        RayRole::GatherMissed { .. } => egui::Color32::from_gray(170),
+        RayRole::Bounce { term }
+        | RayRole::LastBounce { term }
+        | RayRole::ShadowLit { term }
+        | RayRole::GatherLit { term } => term_colour(term),
+    }
 }
 
 /// The probe's window; closing it ends the probe.
@@ -265,6 +409,7 @@ pub fn probe_window(ctx: &egui::Context, probe: &mut ProbeState) {
     };
     let mut open = true;
     egui::Window::new("Pixel probe")
+        .id(egui::Id::unique(PROBE_WINDOW_ID))
         .open(&mut open)
         .default_pos(ctx.content_rect().right_top() + egui::vec2(-380.0, 40.0))
         .default_width(340.0)
@@ -289,6 +434,11 @@ pub fn probe_window(ctx: &egui::Context, probe: &mut ProbeState) {
                 ui.label("no samples yet");
             }
             egui::ScrollArea::vertical().show(ui, |ui| {
+                egui::CollapsingHeader::new("Path of one sample")
+                    .default_open(true)
+                    .show(ui, |ui| {
+                        path_ui(ui, &mut probe.path, &result.probe, result.terms)
+                    });
                 for term in &result.probe.terms {
                     term_ui(ui, term);
                 }
@@ -296,7 +446,97 @@ pub fn probe_window(ctx: &egui::Context, probe: &mut ProbeState) {
         });
     if !open {
         probe.close();
+    } else {
+        probe.refresh_path();
     }
+}
+
+/// The choice of the sample whose path is drawn, and the list of its rays.
+fn path_ui(ui: &mut egui::Ui, path: &mut PathView, probe: &PixelProbe, terms: TermSet) {
+    let mut shown = !path.hidden;
+    ui.checkbox(&mut shown, "Draw its rays on the image")
+        .on_hover_text("The rays this sample traced, projected into the view, coloured by term");
+    path.hidden = !shown;
+    let count = probe.passes.len();
+    if count == 0 {
+        return;
+    }
+    let position = path.position(probe).unwrap_or(0);
+    ui.horizontal(|ui| {
+        let mut number = position as u32 + 1;
+        ui.label("sample");
+        let changed = ui
+            .add(egui::DragValue::new(&mut number).range(1..=count as u32))
+            .on_hover_text("Which of the pixel's samples, in the order the film summed them")
+            .changed();
+        ui.label(format!("of {count}"));
+        let previous = ui.add_enabled(number > 1, egui::Button::new("<")).clicked();
+        let next = ui
+            .add_enabled((number as usize) < count, egui::Button::new(">"))
+            .clicked();
+        if changed || previous || next {
+            number = (number + u32::from(next)).saturating_sub(u32::from(previous)).max(1);
+            path.sample = PathSample::Number(number);
+        }
+        let mut brightest = path.sample == PathSample::Brightest;
+        if ui
+            .toggle_value(&mut brightest, "Brightest")
+            .on_hover_text("Show the sample of largest luminance (a firefly's path), and follow it as samples come in")
+            .changed()
+        {
+            path.sample = if brightest {
+                PathSample::Brightest
+            } else {
+                PathSample::Number(position as u32 + 1)
+            };
+        }
+    });
+    let Some(recorded) = &path.recorded else {
+        ui.spinner();
+        return;
+    };
+    ui.label(
+        egui::RichText::new(format!(
+            "this sample's luminance: {:.4} W/(m²·sr)",
+            probe.pass_luminance[recorded.position]
+        ))
+        .weak()
+        .small(),
+    );
+    egui::Grid::new("probe path")
+        .num_columns(3)
+        .striped(true)
+        .show(ui, |ui| {
+            for segment in &recorded.log.segments {
+                let role = RayRole::of(segment, terms);
+                let (rect, _) =
+                    ui.allocate_exact_size(egui::vec2(14.0, 10.0), egui::Sense::hover());
+                let y = rect.center().y;
+                let stroke = egui::Stroke::new(2.0, role_colour(role));
+                if role.is_dashed() {
+                    ui.painter().add(egui::Shape::dashed_line(
+                        &[egui::pos2(rect.left(), y), egui::pos2(rect.right(), y)],
+                        stroke,
+                        3.0,
+                        2.0,
+                    ));
+                } else {
+                    ui.painter().line_segment(
+                        [egui::pos2(rect.left(), y), egui::pos2(rect.right(), y)],
+                        stroke,
+                    );
+                }
+                ui.label(role.describe());
+                let added = segment_luminance(segment);
+                ui.label(if added > 0.0 {
+                    format!("+{added:.4}")
+                } else {
+                    String::new()
+                })
+                .on_hover_text("Luminance this ray added to its term, W/(m²·sr)");
+                ui.end_row();
+            }
+        });
 }
 
 /// Statistics and histogram of one term of the probed pixel.

@@ -1,0 +1,190 @@
+//! The path view: camera projection, and the recorded rays of a probed sample.
+
+use glam::{Affine3A, Vec2, Vec3};
+use lumiere::camera::CameraRays;
+use lumiere::color::luminance;
+use lumiere::integrator::SegmentKind;
+use lumiere::path_view::{RayRole, path_lines};
+use lumiere::probe::{MAX_PROBE_SAMPLES, probe_pixel};
+use lumiere::render::{PassBuffer, render_pass};
+use lumiere::scene::{Camera, Projection, builtin};
+use lumiere::{Film, RenderContext, RenderSettings, Term, TermSet};
+
+fn cameras() -> Vec<(&'static str, CameraRays)> {
+    let tilted = Affine3A::from_rotation_translation(
+        glam::Quat::from_euler(glam::EulerRot::YXZ, 0.7, -0.3, 0.2),
+        Vec3::new(3.0, -1.0, 1e3),
+    );
+    let camera = |projection| Camera {
+        name: String::new(),
+        world_from_camera: tilted,
+        projection,
+    };
+    vec![
+        (
+            "cornell",
+            CameraRays::new(&builtin::cornell().default_camera(), 64, 48),
+        ),
+        (
+            "perspective",
+            CameraRays::new(&camera(Projection::Perspective { yfov: 1.1 }), 40, 30),
+        ),
+        (
+            "orthographic",
+            CameraRays::new(
+                &camera(Projection::Orthographic { half_height: 2.5 }),
+                40,
+                30,
+            ),
+        ),
+    ]
+}
+
+#[test]
+fn points_of_a_camera_ray_project_to_its_pixel_point() {
+    for (name, camera) in cameras() {
+        let size = camera.film_size();
+        for k in 0..200u32 {
+            // a low-discrepancy walk over the film
+            let film = Vec2::new(
+                (k as f32 * 0.618_034).fract() * size.x,
+                (k as f32 * 0.754_877_7).fract() * size.y,
+            );
+            let (x, y) = (film.x as u32, film.y as u32);
+            let ray = camera.generate(x, y, film - Vec2::new(x as f32, y as f32));
+            for t in [0.5, 1.0, 7.5] {
+                let (from, to) = camera
+                    .project_segment(ray.origin, ray.at(t))
+                    .expect("in front of the camera");
+                for p in [from, to] {
+                    assert!(
+                        (p - film).abs().max_element() < 2e-3 * size.x,
+                        "{name}: {p} against {film} at t = {t}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn segments_are_clipped_at_the_camera() {
+    for (name, camera) in cameras() {
+        let ray = camera.generate(10, 7, Vec2::splat(0.5));
+        let (ahead, behind) = (ray.at(2.0), ray.at(-2.0));
+        // a point off to the side behind the camera: only the part in front is drawn
+        let side = camera.generate(30, 20, Vec2::splat(0.5));
+        let behind_side = side.at(-3.0);
+        let (_, to) = camera.project_segment(behind_side, ahead).unwrap();
+        let (_, alone) = camera.project_segment(ahead, ahead).unwrap();
+        assert!((to - alone).length() < 1e-3, "{name}: {to} {alone}");
+        assert_eq!(
+            camera.project_segment(behind, behind_side),
+            None,
+            "{name}: wholly behind"
+        );
+    }
+}
+
+/// A Cornell film of `spp` passes with L0, L1, L2 and its context.
+fn cornell_film(spp: u32) -> (RenderContext, Film) {
+    let settings = RenderSettings {
+        width: 32,
+        height: 24,
+        ..RenderSettings::default()
+    };
+    let context = RenderContext::new(builtin::cornell(), settings);
+    let mut film = Film::new(32, 24);
+    let mut buffer = PassBuffer::default();
+    for pass in 0..spp {
+        render_pass(&context, &mut film, pass, &mut buffer);
+    }
+    (context, film)
+}
+
+#[test]
+fn a_recorded_path_is_the_probed_sample_and_starts_at_its_pixel() {
+    let (context, film) = cornell_film(12);
+    let terms = context.settings.terms;
+    let mut shadow_rays = 0;
+    for (x, y) in [(16, 10), (5, 18), (27, 6)] {
+        let probe = probe_pixel(&context, &film, x, y, terms, MAX_PROBE_SAMPLES);
+        assert_eq!(probe.passes, (0..12).collect::<Vec<_>>());
+        for (position, &pass) in probe.passes.iter().enumerate() {
+            let log = probe.record_path(&context, pass);
+            let radiance = log.radiance();
+            // the rays add up to the sample the film summed, bit for bit
+            for term in &probe.terms {
+                assert_eq!(
+                    radiance[term.term.index()],
+                    term.samples[position],
+                    "{:?} of pass {pass} at ({x}, {y})",
+                    term.term
+                );
+            }
+            let total: f64 = probe
+                .terms
+                .iter()
+                .map(|t| luminance(t.samples[position]) as f64)
+                .sum();
+            assert_eq!(probe.pass_luminance[position], total);
+
+            let lines = path_lines(&log, &context.camera, terms);
+            let pixel = |p: Vec2| {
+                p.x > x as f32 - 0.01
+                    && p.x < x as f32 + 1.01
+                    && p.y > y as f32 - 0.01
+                    && p.y < y as f32 + 1.01
+            };
+            assert_eq!(lines[0].role, RayRole::Camera);
+            assert!(pixel(lines[0].to), "camera hit at {}", lines[0].to);
+            for (line, segment) in lines[1..].iter().map(|l| (l, &log.segments[l.segment])) {
+                match line.role {
+                    RayRole::ShadowLit { term } | RayRole::ShadowBlocked { term }
+                        if term == Term::L1 =>
+                    {
+                        // L1 light samples leave the first hit, seen in the pixel
+                        assert!(pixel(line.from), "L1 shadow ray from {}", line.from);
+                        shadow_rays += 1;
+                    }
+                    RayRole::ShadowLit { term } | RayRole::ShadowBlocked { term } => {
+                        assert_eq!(term, Term::L2)
+                    }
+                    RayRole::Bounce { term } => assert_eq!(term, Term::L2),
+                    // L3+ is off: the second continuation only looks for a light
+                    RayRole::LastBounce { term } => assert_eq!(term, Term::L2),
+                    RayRole::GatherLit { .. } | RayRole::GatherMissed { .. } => {
+                        panic!("mis with brdf indirect sampling reuses the bounce")
+                    }
+                    RayRole::Camera => panic!("one camera ray"),
+                }
+                assert_eq!(
+                    line.role.is_dashed(),
+                    matches!(
+                        segment.kind,
+                        SegmentKind::Shadow { occluded: true }
+                            | SegmentKind::Gather { hit_light: false }
+                    )
+                );
+            }
+        }
+        let brightest = probe.brightest().unwrap();
+        let max = probe.pass_luminance.iter().cloned().fold(0.0, f64::max);
+        assert_eq!(probe.pass_luminance[brightest], max);
+    }
+    assert!(shadow_rays >= 30, "{shadow_rays} L1 shadow rays");
+}
+
+#[test]
+fn a_camera_ray_that_leaves_the_scene_is_a_point_and_nothing_else() {
+    let (context, film) = cornell_film(2);
+    // the top-left corner of the Cornell view looks past the box
+    let probe = probe_pixel(&context, &film, 0, 0, context.settings.terms, 16);
+    let log = probe.record_path(&context, 0);
+    let lines = path_lines(&log, &context.camera, context.settings.terms);
+    assert_eq!(lines.len(), 1);
+    assert_eq!(lines[0].role, RayRole::Camera);
+    assert!((lines[0].to - Vec2::new(0.5, 0.5)).length() < 0.75);
+    let roles_of_l1 = TermSet::only(Term::L1);
+    assert_eq!(path_lines(&log, &context.camera, roles_of_l1).len(), 1);
+}
