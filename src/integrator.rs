@@ -56,7 +56,9 @@
 //! direction at a vertex whose next term is off (`--terms L2` traces no shadow
 //! ray at the first hit), no vertex beyond the last term needed (`--terms L0`
 //! traces camera rays only), no continuation whose only use would be an
-//! emission hit of weight 0, no shadow ray for a light behind the surface.
+//! emission hit of weight 0, no shadow ray for a light behind the surface,
+//! no gathered direction in a scene whose lights cannot be hit (points,
+//! spots, the sun). [`SkippedWork`] counts each.
 
 use std::sync::Arc;
 
@@ -92,6 +94,59 @@ pub struct RayCounts {
     /// Directions traced only to find lights (not continuing the path).
     pub gather: u64,
     pub per_term: [u64; Term::COUNT],
+    /// Work the settings and the scene made unnecessary.
+    pub skipped: SkippedWork,
+}
+
+/// Work not done because nothing would come of it, counted to show what the
+/// settings and the scene save.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SkippedWork {
+    /// Shadow rays not traced: the light sample was behind the surface or carried nothing.
+    pub shadow_rays: u64,
+    /// Vertices whose direct lighting was not estimated: its term is off.
+    pub direct_lighting: u64,
+    /// Directions not gathered: the scene has no light a ray can hit.
+    pub gathered: u64,
+    /// Continuations not traced: no selected term needs another reflection.
+    pub continuations: u64,
+    /// Paths ended by Russian roulette.
+    pub roulette: u64,
+}
+
+impl SkippedWork {
+    /// Rays that were not traced.
+    pub fn rays(&self) -> u64 {
+        self.shadow_rays + self.gathered + self.continuations + self.roulette
+    }
+
+    pub fn add(&mut self, other: &SkippedWork) {
+        self.shadow_rays += other.shadow_rays;
+        self.direct_lighting += other.direct_lighting;
+        self.gathered += other.gathered;
+        self.continuations += other.continuations;
+        self.roulette += other.roulette;
+    }
+
+    /// One line for summaries: the non-zero counts.
+    pub fn describe(&self) -> String {
+        let parts: Vec<String> = [
+            (self.shadow_rays, "shadow rays (light behind the surface)"),
+            (self.direct_lighting, "light samplings (term off)"),
+            (self.gathered, "gathered directions (no light to hit)"),
+            (self.continuations, "continuations (no term needs them)"),
+            (self.roulette, "paths ended by Russian roulette"),
+        ]
+        .iter()
+        .filter(|(n, _)| *n > 0)
+        .map(|(n, what)| format!("{n} {what}"))
+        .collect();
+        if parts.is_empty() {
+            "nothing".into()
+        } else {
+            parts.join(", ")
+        }
+    }
 }
 
 impl RayCounts {
@@ -107,6 +162,7 @@ impl RayCounts {
         for (mine, theirs) in self.per_term.iter_mut().zip(other.per_term) {
             *mine += theirs;
         }
+        self.skipped.add(&other.skipped);
     }
 }
 
@@ -396,13 +452,15 @@ impl<'a> Walk<'a> {
 
     /// Whether and how directions are gathered at `vertex`, which has `continuations`.
     #[inline(always)]
-    fn gather_plan(&self, vertex: &Vertex, continuations: u32) -> Gather {
+    fn gather_plan(&mut self, vertex: &Vertex, continuations: u32) -> Gather {
         let settings = &self.context.settings;
-        let gathering = self.can_hit_lights
-            && !vertex.brdf.is_delta()
+        let wanted = !vertex.brdf.is_delta()
             && self.terms.contains_reflections(vertex.index + 1)
             && gather_directions(settings.light_sampling).is_some();
-        if !gathering {
+        if wanted && !self.can_hit_lights {
+            self.counts.skipped.gathered += u64::from(settings.light_samples.max(1));
+        }
+        if !(wanted && self.can_hit_lights) {
             Gather::None
         } else if settings.light_samples <= 1
             && continuations == 1
@@ -426,7 +484,11 @@ impl<'a> Walk<'a> {
         stream: &SampleStream,
         gather: Gather,
     ) {
-        if vertex.brdf.is_delta() || !self.terms.contains_reflections(vertex.index + 1) {
+        if vertex.brdf.is_delta() {
+            return;
+        }
+        if !self.terms.contains_reflections(vertex.index + 1) {
+            self.counts.skipped.direct_lighting += 1;
             return;
         }
         let settings = &self.context.settings;
@@ -486,6 +548,7 @@ impl<'a> Walk<'a> {
         let contribution = throughput * f_cos * light.radiance / light.pdf;
         // a light behind the surface (or a zero BRDF) gets no shadow ray
         if contribution.max_element() <= 0.0 || light.wi.dot(vertex.ng) <= 0.0 {
+            self.counts.skipped.shadow_rays += 1;
             return;
         }
         let term = Term::of_reflections(vertex.index + 1);
@@ -615,6 +678,7 @@ impl<'a> Walk<'a> {
         if next >= self.last_reflection
             && !(finds_lights && self.can_hit_lights && self.terms.contains_reflections(next))
         {
+            self.counts.skipped.continuations += 1;
             return None;
         }
         let base = dim::vertex_base(vertex.index);
@@ -642,6 +706,7 @@ impl<'a> Walk<'a> {
         if next >= 3 {
             let survival = throughput.max_element().min(0.95);
             if stream.uniform(base + dim::RUSSIAN_ROULETTE) >= survival {
+                self.counts.skipped.roulette += 1;
                 return None;
             }
             *throughput /= survival;

@@ -119,6 +119,13 @@ pub fn status_bar(app: &LumiereApp, ui: &mut egui::Ui, snapshot: &Snapshot) {
                 rays.camera, rays.shadow, rays.gather, rays.bounce
             ));
             ui.separator();
+            let skipped = rays.skipped;
+            ui.label(format!("skipped {} rays", skipped.rays()))
+                .on_hover_text(format!(
+                    "Work the settings and the scene made unnecessary, since the last restart: {}",
+                    skipped.describe()
+                ));
+            ui.separator();
             ui.label(state);
             if let Some(message) = &app.message {
                 ui.separator();
