@@ -96,6 +96,8 @@ pub struct RayCounts {
     pub per_term: [u64; Term::COUNT],
     /// Work the settings and the scene made unnecessary.
     pub skipped: SkippedWork,
+    /// Samples with a NaN, infinite or negative term, zeroed before they reach the film.
+    pub invalid_samples: u64,
 }
 
 /// Work not done because nothing would come of it, counted to show what the
@@ -163,6 +165,7 @@ impl RayCounts {
             *mine += theirs;
         }
         self.skipped.add(&other.skipped);
+        self.invalid_samples += other.invalid_samples;
     }
 }
 
@@ -249,7 +252,8 @@ impl RenderContext {
         counts: &mut RayCounts,
     ) -> TermRadiance {
         let ray = self.camera.generate(x, y, stream.uniform2(dim::PIXEL));
-        Walk::new(self, counts, None).camera_path(ray, stream)
+        let radiance = Walk::new(self, counts, None).camera_path(ray, stream);
+        guard_sample(radiance, counts)
     }
 
     /// [`RenderContext::sample_pixel`] that also appends every ray it traces to `log`.
@@ -262,13 +266,31 @@ impl RenderContext {
         log: &mut PathLog,
     ) -> TermRadiance {
         let ray = self.camera.generate(x, y, stream.uniform2(dim::PIXEL));
-        Walk::new(self, counts, Some(log)).camera_path(ray, stream)
+        let radiance = Walk::new(self, counts, Some(log)).camera_path(ray, stream);
+        guard_sample(radiance, counts)
     }
 
     /// Radiance arriving along `ray` (unit direction), per term.
     pub fn trace(&self, ray: Ray, stream: &SampleStream, counts: &mut RayCounts) -> TermRadiance {
         Walk::new(self, counts, None).camera_path(ray, stream)
     }
+}
+
+/// The film's guard: a term whose radiance is not finite or is negative
+/// (a numerical accident; radiance cannot be negative) is set to zero, and the
+/// sample counted in `counts.invalid_samples`. Zeroing biases the pixel
+/// slightly dark, so the count must stay 0; the stress suite checks it does.
+#[inline(always)]
+fn guard_sample(mut radiance: TermRadiance, counts: &mut RayCounts) -> TermRadiance {
+    let mut invalid = false;
+    for term in &mut radiance {
+        if !(term.is_finite() && term.min_element() >= 0.0) {
+            *term = Vec3::ZERO;
+            invalid = true;
+        }
+    }
+    counts.invalid_samples += u64::from(invalid);
+    radiance
 }
 
 /// A distribution of directions on the hemisphere of a vertex.
@@ -840,4 +862,26 @@ fn draw_direction(
 fn lowest_selected(terms: TermSet, reflections: u32) -> usize {
     let from = Term::of_reflections(reflections);
     terms.iter().find(|&t| t >= from).unwrap_or(from).index()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_guard_zeroes_invalid_terms_and_counts_the_sample_once() {
+        let mut counts = RayCounts::default();
+        let valid = [Vec3::ZERO, Vec3::new(0.5, 1.0, 2.0), Vec3::ONE, Vec3::ZERO];
+        assert_eq!(guard_sample(valid, &mut counts), valid);
+        assert_eq!(counts.invalid_samples, 0);
+        let invalid = [
+            Vec3::new(f32::INFINITY, 0.0, 0.0),
+            Vec3::new(0.5, f32::NAN, 2.0),
+            Vec3::ONE,
+            Vec3::new(0.0, -1e-9, 0.0),
+        ];
+        let guarded = guard_sample(invalid, &mut counts);
+        assert_eq!(guarded, [Vec3::ZERO, Vec3::ZERO, Vec3::ONE, Vec3::ZERO]);
+        assert_eq!(counts.invalid_samples, 1);
+    }
 }

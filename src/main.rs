@@ -552,11 +552,12 @@ fn update_bar(bar: &ProgressBar, stats: &RenderStats, budget: Budget) {
 
 fn summary(stats: &RenderStats) -> String {
     format!(
-        "{} spp, {:.2} s, {} rays, {:.1} Mrays/s\nskipped: {}",
+        "{} spp, {:.2} s, {} rays, {:.1} Mrays/s, {} invalid samples dropped\nskipped: {}",
         stats.samples_per_pixel,
         stats.elapsed.as_secs_f64(),
         stats.rays.total(),
         stats.mrays_per_second(),
+        stats.rays.invalid_samples,
         stats.rays.skipped.describe()
     )
 }

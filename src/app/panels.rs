@@ -126,6 +126,16 @@ pub fn status_bar(app: &LumiereApp, ui: &mut egui::Ui, snapshot: &Snapshot) {
                     skipped.describe()
                 ));
             ui.separator();
+            let invalid = rays.invalid_samples;
+            let text = format!("{invalid} invalid");
+            let hint = "Samples with a NaN, infinite or negative value, dropped (zeroed) before the film: it should stay 0";
+            if invalid == 0 {
+                ui.label(text).on_hover_text(hint);
+            } else {
+                ui.colored_label(ui.visuals().warn_fg_color, text)
+                    .on_hover_text(hint);
+            }
+            ui.separator();
             ui.label(state);
             if let Some(message) = &app.message {
                 ui.separator();
