@@ -136,6 +136,7 @@ pub struct TriangleHit {
 #[derive(Clone, Copy, Debug)]
 pub struct ShearedRay {
     origin: Vec3A,
+    direction: Vec3A,
     /// Index of the dominant axis (it becomes z).
     kz: u8,
     shear: Vec3A,
@@ -147,6 +148,7 @@ impl ShearedRay {
         let d = Self::permute_axes(kz, direction);
         Self {
             origin,
+            direction,
             kz,
             shear: Vec3A::new(-d.x / d.z, -d.y / d.z, 1.0 / d.z),
         }
@@ -160,6 +162,18 @@ impl ShearedRay {
             1 => v.zxy(),
             _ => v,
         }
+    }
+
+    /// The distance along the ray to the plane of (p0, p1, p2), computed in
+    /// f64 (the f32 inputs' differences and products are nearly exact), if it
+    /// is positive.
+    #[cold]
+    fn plane_distance(&self, p0: Vec3A, p1: Vec3A, p2: Vec3A) -> Option<f32> {
+        let (p0, p1, p2) = (p0.as_dvec3(), p1.as_dvec3(), p2.as_dvec3());
+        let normal = (p1 - p0).cross(p2 - p0);
+        let towards = normal.dot(self.direction.as_dvec3());
+        let t = normal.dot(p0 - self.origin.as_dvec3()) / towards;
+        (t > 0.0 && t.is_finite()).then_some(t as f32)
     }
 
     /// Watertight intersection with triangle (p0, p1, p2) (Woop, Benthin,
@@ -211,9 +225,15 @@ impl ShearedRay {
         let max_e = Vec3A::new(e0, e1, e2).abs().max_element();
         let delta_t =
             3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
-        if t <= delta_t {
-            return None;
-        }
+        let t = if t > delta_t {
+            t
+        } else {
+            // The bound grows with the triangle's size (a 40 m wall: 1 cm), and a
+            // wall that close is common (a bounce near a corner). Decide in f64
+            // from the triangle's plane instead: rays leave their surface from
+            // origins offset off it, so its own plane is strictly behind them.
+            self.plane_distance(p0, p1, p2)?
+        };
         Some(TriangleHit {
             t,
             b0: e0 * inv_det,
@@ -239,6 +259,45 @@ pub fn intersect_triangle(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_large_triangle_close_ahead_is_hit_and_the_one_left_is_not() {
+        // the side wall of a 1 × 1 × 40 m corridor, and a ray leaving the top
+        // wall 2 mm from it: the f32 bound on t (1 cm here) cannot decide
+        let wall = [
+            Vec3A::new(1.0, 0.0, 0.0),
+            Vec3A::new(1.0, 1.0, 0.0),
+            Vec3A::new(1.0, 1.0, 40.0),
+        ];
+        let origin = Vec3A::new(0.99806, 0.999_999_5, 1.455_761_2);
+        let direction = (Vec3A::new(15.718_858, -13.778_135, 35.615_75) - origin).normalize();
+        let hit = intersect_triangle(origin, direction, f32::INFINITY, wall[0], wall[1], wall[2])
+            .expect("the wall 5 mm ahead");
+        assert!((hit.t - 0.005_274_86).abs() < 1e-6, "t = {}", hit.t);
+        // leaving the wall from a point offset off it: no hit on the wall itself
+        let on_wall = Vec3::new(1.0, 0.7, 20.0);
+        let inward = -Vec3::X;
+        let leaving = offset_ray_origin(on_wall, Vec3::splat(gamma(7) * 20.0), Vec3::X, inward);
+        for direction in [
+            Vec3::new(-1.0, 0.0, 0.0),
+            Vec3::new(-1e-3, 0.3, 1.0),
+            Vec3::new(-1e-6, -0.5, -1.0),
+        ] {
+            let direction = Vec3A::from(direction.normalize());
+            assert!(
+                intersect_triangle(
+                    leaving.into(),
+                    direction,
+                    f32::INFINITY,
+                    wall[0],
+                    wall[1],
+                    wall[2]
+                )
+                .is_none(),
+                "self-intersection leaving along {direction}"
+            );
+        }
+    }
 
     #[test]
     fn frame_is_orthonormal() {
