@@ -98,6 +98,9 @@ pub struct RayCounts {
     pub skipped: SkippedWork,
     /// Samples with a NaN, infinite or negative term, zeroed before they reach the film.
     pub invalid_samples: u64,
+    /// Camera rays, bounces and gathered directions that left the scene (in a
+    /// closed scene, leaks).
+    pub escaped: u64,
 }
 
 /// Work not done because nothing would come of it, counted to show what the
@@ -166,6 +169,7 @@ impl RayCounts {
         }
         self.skipped.add(&other.skipped);
         self.invalid_samples += other.invalid_samples;
+        self.escaped += other.escaped;
     }
 }
 
@@ -811,6 +815,7 @@ impl<'a> Walk<'a> {
     /// Records a ray that left the scene (it added nothing).
     #[cold]
     fn record_escape(&mut self, ray: &Ray, kind: SegmentKind, term: Term) {
+        self.counts.escaped += 1;
         if self.log.is_some() {
             let length = self.context.scene.bounds().diagonal().max(1.0);
             let to = ray.origin + ray.direction.normalize_or_zero() * length;

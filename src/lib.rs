@@ -47,6 +47,7 @@ pub mod scene;
 pub mod settings;
 pub mod shading;
 pub mod sidecar;
+pub mod stress;
 pub mod strip;
 
 pub use error::SceneError;

@@ -47,6 +47,8 @@ enum Command {
     View(ViewArgs),
     /// One progressive render shown at several sample counts, side by side and labelled (PNG).
     Strip(StripArgs),
+    /// The numerical stress suite: scenes that break naive tracers, with a table of invalid samples, leaks and energy errors.
+    Stress(StressArgs),
 }
 
 /// What decides the radiance and its display: shared by `render`, `view` and `strip`.
@@ -126,6 +128,16 @@ struct RenderArgs {
     settings: Option<PathBuf>,
     #[command(flatten)]
     options: SceneOptions,
+}
+
+#[derive(Args)]
+struct StressArgs {
+    /// The test suite's sizes (seconds) instead of the full figures (10^6 rays and samples).
+    #[arg(long)]
+    quick: bool,
+    /// Run only these cases (comma-separated; default: all).
+    #[arg(long, value_delimiter = ',')]
+    only: Vec<lumiere::stress::Case>,
 }
 
 #[derive(Args)]
@@ -298,6 +310,7 @@ fn main() -> ExitCode {
         Some(Command::Render(args)) => run_render(&args),
         Some(Command::View(args)) => run_view(args, false),
         Some(Command::Strip(args)) => run_strip(&args),
+        Some(Command::Stress(args)) => run_stress(&args),
         None => run_view(ViewArgs::parse_from(["view"]), true),
     };
     match result {
@@ -385,6 +398,40 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
     )
     .map_err(|e| runtime(e.into()))?;
     println!("{}", summary(&stats));
+    Ok(())
+}
+
+fn run_stress(args: &StressArgs) -> Result<(), Failure> {
+    use lumiere::stress::{Case, Effort, table};
+    let effort = if args.quick {
+        Effort::Quick
+    } else {
+        Effort::Full
+    };
+    let cases: Vec<Case> = if args.only.is_empty() {
+        Case::ALL.to_vec()
+    } else {
+        args.only.clone()
+    };
+    let bar = ProgressBar::new(cases.len() as u64).with_style(
+        ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}").expect("a valid template"),
+    );
+    let mut reports = Vec::new();
+    for case in cases {
+        bar.set_message(format!("{case}: {}", case.description()));
+        reports.push(case.run(effort));
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    print!("{}", table(&reports));
+    let failed = reports.iter().filter(|r| !r.passed()).count();
+    if failed > 0 {
+        return Err(runtime(anyhow::anyhow!(
+            "{failed} of {} stress cases failed",
+            reports.len()
+        )));
+    }
+    println!("all {} cases passed", reports.len());
     Ok(())
 }
 
