@@ -8,9 +8,11 @@
 //! * **leaked rays** — in a closed scene, rays that left it
 //!   (`RayCounts::escaped`), or for the sphere case rays that missed it; must be 0;
 //! * **energy error** — where the answer is known, the largest relative error
-//!   of a term's image mean and its z-score z = (mean − exact) / se; must
-//!   stay within the noise (|z| < [`Z_LIMIT`]) or, for noiseless terms,
-//!   within [`NOISELESS_TOLERANCE`];
+//!   of a term's image mean, and its z-score z = (|mean − exact| − tol·exact) / se
+//!   where tol is the case's stated systematic tolerance (0 unless the closed
+//!   form is approximate: a tessellated sphere, f32 positions 10⁵ m out); must
+//!   stay within the noise (z < [`Z_LIMIT`]) or, for noiseless terms, within
+//!   [`NOISELESS_TOLERANCE`];
 //! * **time**.
 //!
 //! Most closed forms are the furnace's: inside a closed surface of uniform
@@ -182,7 +184,8 @@ pub struct CaseReport {
     pub leaked_rays: u64,
     /// Largest relative error of a term with a known value, if any.
     pub energy_error: Option<f64>,
-    /// Largest |z| among the noisy terms with a known value.
+    /// Largest |z| among the noisy terms with a known value, counting only
+    /// the deviation beyond the case's systematic tolerance.
     pub worst_z: Option<f64>,
     pub time: Duration,
     /// What went wrong, empty if the case passed.
@@ -252,9 +255,11 @@ impl CaseReport {
         self.energy_error = Some(self.energy_error.unwrap_or(0.0).max(error));
         if measured.standard_error > 0.0 {
             let z = (measured.value - exact) / measured.standard_error;
-            self.worst_z = Some(self.worst_z.unwrap_or(0.0).max(z.abs()));
-            let allowed = Z_LIMIT * measured.standard_error + tolerance * exact.abs();
-            if (measured.value - exact).abs() > allowed {
+            // the deviation beyond the case's systematic tolerance, in standard errors
+            let excess = ((measured.value - exact).abs() - tolerance * exact.abs()).max(0.0)
+                / measured.standard_error;
+            self.worst_z = Some(self.worst_z.unwrap_or(0.0).max(excess));
+            if excess > Z_LIMIT {
                 self.failures.push(format!(
                     "{variant}: {} = {:.6} ± {:.2e}, exact {exact:.6} (z = {z:.1})",
                     term.label(),
@@ -529,7 +534,7 @@ fn setup(case: Case, effort: Effort) -> Setup {
                 ..furnace(1.0, Vec3::ZERO)
             }
         }
-        Case::CoincidentFaces => coincident_faces(settings),
+        Case::CoincidentFaces => point_in_sphere(&settings, 1.0, Vec3::ZERO, 3),
         Case::SharpPhong => Setup {
             scene: furnace_scene(
                 1.0,
@@ -548,8 +553,9 @@ fn setup(case: Case, effort: Effort) -> Setup {
                 ..settings.clone()
             },
             // a lobe this sharp reflects ks cos θ, and the facets of the
-            // tessellated sphere tilt up to 3.75° from the rays through its centre
-            tolerance: 0.01,
+            // tessellated sphere tilt up to 3.75° from the rays through its
+            // centre: 0.2 % per reflection, compounding in L3+
+            tolerance: 0.05,
             ..furnace(1.0, Vec3::ZERO)
         },
         Case::WhiteFurnace => Setup {
@@ -589,42 +595,42 @@ fn setup(case: Case, effort: Effort) -> Setup {
     }
 }
 
-/// A point light of intensity π at the centre of a closed sphere of radius 1
-/// and albedo ½, whose surface is there three times (twice as authored, once
-/// inside out): whichever copy a ray meets, L1 = ρ I / (π R²) = ½ and
-/// L_k = ρ^(k−1) L1, and no copy may shadow another. As sphere lights
-/// (`area` mode) the light gets a radius of 1 mm, which absorbs a negligible
-/// 10⁻⁶ of L2.
-fn coincident_faces(settings: RenderSettings) -> Setup {
+/// A point light of intensity π R² at the centre of a closed sphere of
+/// radius R at `centre` and albedo ½, its surface there `copies` times (the
+/// third inside out), seen from halfway to the wall: whichever copy a ray
+/// meets, L1 = ρ I / (π R²) = ½ and L_k = ρ^(k−1) L1, and no copy may shadow
+/// another. As a sphere light (`area` mode) the light gets a radius of
+/// 10⁻³ R, which absorbs a negligible 10⁻⁶ of L2.
+fn point_in_sphere(settings: &RenderSettings, radius: f32, centre: Vec3, copies: usize) -> Setup {
     let mut scene = Scene {
-        name: "coincident faces".into(),
+        name: "point in sphere".into(),
         ..Scene::default()
     };
     let wall = scene.add_material(Material {
         double_sided: true,
         ..Material::lambert("wall", Vec3::splat(0.5))
     });
-    for inward in [true, true, false] {
-        let (positions, triangles) = uv_sphere(Vec3::ZERO, 1.0, 256, 128, inward);
+    for copy in 0..copies {
+        let (positions, triangles) = uv_sphere(centre, radius, 256, 128, copy != 2);
         scene.add_mesh("sphere", wall, &positions, &triangles);
     }
     scene.lights.push(PunctualLight {
         name: "centre".into(),
         kind: PunctualKind::Point,
-        position: Vec3::ZERO,
+        position: centre,
         direction: -Vec3::Z,
-        intensity: Vec3::splat(std::f32::consts::PI),
+        intensity: Vec3::splat(std::f32::consts::PI * radius * radius),
     });
     scene.cameras.push(look(
-        Vec3::new(0.5, 0.0, 0.0),
+        centre + Vec3::new(0.5 * radius, 0.0, 0.0),
         Vec3::new(1.0, 0.2, 0.1),
         1.2,
     ));
     Setup {
         scene,
         settings: RenderSettings {
-            light_radius: Some(1e-3),
-            ..settings
+            light_radius: Some(1e-3 * radius),
+            ..settings.clone()
         },
         light_modes: ALL_MODES,
         closed: true,
@@ -749,16 +755,48 @@ pub fn case_scene(case: Case, effort: Effort) -> Option<(Scene, RenderSettings)>
     Some((setup.scene, setup.settings))
 }
 
+/// The scenes of a render case: the scale cases also put a point light in a
+/// sphere of their size and place, for the light modes.
+fn setups(case: Case, effort: Effort) -> Vec<Setup> {
+    let (width, height, _) = film_size(effort);
+    let settings = RenderSettings {
+        width,
+        height,
+        terms: TermSet::ALL,
+        max_bounces: 16,
+        ..RenderSettings::default()
+    };
+    let point = |radius: f32, centre: Vec3| point_in_sphere(&settings, radius, centre, 1);
+    let mut list = vec![setup(case, effort)];
+    match case {
+        Case::TinyScale => list.push(point(1e-4, Vec3::ZERO)),
+        Case::HugeScale => list.push(point(1e5, Vec3::ZERO)),
+        Case::FarFromOrigin => list.push(Setup {
+            tolerance: 0.02,
+            ..point(10.0, Vec3::new(1e5, -1e5, 1e5))
+        }),
+        _ => {}
+    }
+    list
+}
+
 fn render_case(case: Case, effort: Effort) -> CaseReport {
-    let (_, _, passes) = film_size(effort);
-    let setup = setup(case, effort);
     let mut report = CaseReport::new(case);
+    for setup in setups(case, effort) {
+        render_setup(&setup, effort, &mut report);
+    }
+    report
+}
+
+/// Renders `setup` in each of its light modes, filing what it measured in `report`.
+fn render_setup(setup: &Setup, effort: Effort, report: &mut CaseReport) {
+    let (_, _, passes) = film_size(effort);
     for &mode in setup.light_modes {
         let settings = RenderSettings {
             light_mode: mode,
             ..setup.settings.clone()
         };
-        let variant = format!("{} lights", mode.label());
+        let variant = format!("{}, {} lights", setup.scene.name, mode.label());
         let (film, counts) = render_scene(&setup.scene, &settings, passes);
         report.samples += film.pixel_count() as u64 * passes as u64;
         report.add_counts(&counts, setup.closed, &variant);
@@ -778,7 +816,6 @@ fn render_case(case: Case, effort: Effort) -> CaseReport {
             }
         }
     }
-    report
 }
 
 // ── the sphere, traced from inside ─────────────────────────────────────
@@ -788,7 +825,7 @@ fn render_case(case: Case, effort: Effort) -> CaseReport {
 fn sphere_leaks(effort: Effort) -> CaseReport {
     let rays_per_centre: u64 = match effort {
         Effort::Quick => 50_000,
-        Effort::Full => 500_000,
+        Effort::Full => 1_000_000,
     };
     let mut report = CaseReport::new(Case::SphereLeaks);
     for centre in [Vec3::ZERO, Vec3::splat(1e4)] {
