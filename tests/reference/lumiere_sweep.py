@@ -18,6 +18,7 @@ import argparse
 import csv
 import os
 import re
+import resource
 import subprocess
 import sys
 import tempfile
@@ -53,20 +54,24 @@ def main(argv=None):
 
     reference = read_exr(args.reference)
     rows = []
+    print(f"{'spp':>7} {'seconds':>9} {'cpu s':>9} {'rmse':>11} {'relmse':>11}")
     with tempfile.TemporaryDirectory() as tmp:
         image = os.path.join(tmp, "image.exr")
         for i, spp in enumerate(args.spp):
             cmd = [args.lumiere, "render", args.scene, "--width", str(args.width), "--height",
                    str(args.height), "--terms", args.terms, "--spp", str(spp),
                    "--seed", str(args.seed + i), "-o", image, *args.extra]
+            r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
             out = subprocess.run(cmd, check=True, capture_output=True, text=True)
+            r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+            cpu = r1.ru_utime - r0.ru_utime + r1.ru_stime - r0.ru_stime  # whole process
             m = re.search(r"(\d+) spp, ([0-9.]+) s", out.stdout + out.stderr)
             if not m:
                 print(f"error: no render time in lumiere's output:\n{out.stdout}{out.stderr}", file=sys.stderr)
                 return 2
             rmse, relmse = image_error(read_exr(image), reference)
             rows.append(("lumiere", args.estimator, spp, float(m.group(2)), rmse, relmse))
-            print(f"{spp:>7} {float(m.group(2)):>9.3f} {rmse:>11.4e} {relmse:>11.4e}", flush=True)
+            print(f"{spp:>7} {float(m.group(2)):>9.3f} {cpu:>9.3f} {rmse:>11.4e} {relmse:>11.4e}", flush=True)
 
     with open(args.out, "w", newline="") as f:
         w = csv.writer(f, lineterminator="\n")

@@ -15,7 +15,9 @@ with lumiere's own definitions (src/metrics.rs):
 
 The CSV's header is `renderer,estimator,spp,seconds,rmse,relmse`, one row a
 render (renderer `mitsuba`, estimator `path-llvm` or `path-scalar`); a short
-table goes to standard output.
+table goes to standard output, with the CPU seconds of each render too (all
+threads): on a shared machine the wall time depends on the other load, the
+CPU time much less.
 
 Timing: each row's seconds is the wall time of its renders (all passes) up
 to the image as a NumPy array, so the kernels have really run; loading the
@@ -138,11 +140,11 @@ def main(argv=None):
     estimator = "path-" + ("llvm" if llvm else args.variant.split("_")[0])
     rows = []
     for spp in args.spp:
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         img = render(spp)
-        seconds = time.perf_counter() - t0
+        seconds, cpu = time.perf_counter() - t0, time.process_time() - c0
         rmse, relmse = image_error(img, reference)
-        rows.append(("mitsuba", estimator, spp, seconds, rmse, relmse))
+        rows.append(("mitsuba", estimator, spp, seconds, rmse, relmse, cpu))
 
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
     with open(args.out, "w", newline="") as f:
@@ -153,9 +155,9 @@ def main(argv=None):
 
     print(f"mitsuba {mi.__version__} {mi.variant()}, {threads} threads, {args.width}x{args.height}, "
           f"max_depth {args.max_depth}, passes of <= {per_pass} spp; warm-up (untimed) {warm:.2f} s")
-    print(f"{'spp':>7} {'seconds':>9} {'spp/s':>9} {'rmse':>11} {'relmse':>11}")
-    for _, _, spp, seconds, rmse, relmse in rows:
-        print(f"{spp:>7} {seconds:>9.3f} {spp / seconds:>9.1f} {rmse:>11.4e} {relmse:>11.4e}")
+    print(f"{'spp':>7} {'seconds':>9} {'spp/s':>9} {'cpu s':>9} {'rmse':>11} {'relmse':>11}")
+    for _, _, spp, seconds, rmse, relmse, cpu in rows:
+        print(f"{spp:>7} {seconds:>9.3f} {spp / seconds:>9.1f} {cpu:>9.3f} {rmse:>11.4e} {relmse:>11.4e}")
     print(f"wrote {args.out}")
     return 0
 
