@@ -34,7 +34,9 @@ mitsuba_render.py does.
 import argparse
 import csv
 import os
+import subprocess
 import sys
+import tempfile
 import time
 
 import numpy as np
@@ -56,9 +58,22 @@ def image_error(image, reference):
     return float(np.sqrt(e2.mean())), float((e2 / (r * r + RELMSE_EPSILON)).mean())
 
 
-def read_exr(mi, path):
-    bmp = mi.Bitmap(path).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False)
-    return np.array(bmp, dtype=np.float32)
+_READ_EXR = """
+import sys, numpy as np, mitsuba as mi
+mi.set_variant("scalar_rgb")
+bmp = mi.Bitmap(sys.argv[1]).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False)
+np.save(sys.argv[2], np.array(bmp, dtype=np.float32))
+"""
+
+
+def read_exr(path):
+    """A linear RGB EXR as float32 (height, width, 3), read by Mitsuba in a
+    child process: in this one, once Dr.Jit's thread count is set to 1,
+    reading an EXR never returns."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "image.npy")
+        subprocess.run([sys.executable, "-c", _READ_EXR, path, out], check=True)
+        return np.load(out)
 
 
 def parse_spp(text):
@@ -95,16 +110,17 @@ def main(argv=None):
         if lib:
             os.environ["DRJIT_LIBLLVM_PATH"] = lib
     import drjit as dr
+    if args.threads is not None:
+        # before the variant starts its backend
+        dr.set_thread_count(args.threads)
     import mitsuba as mi
     mi.set_variant(args.variant)
     if mi.variant() != args.variant:
         print(f"error: Mitsuba runs {mi.variant()}, not {args.variant}", file=sys.stderr)
         return 2
-    if args.threads is not None:
-        dr.set_thread_count(args.threads)
     threads = dr.thread_count() if hasattr(dr, "thread_count") else os.cpu_count()
 
-    reference = read_exr(mi, args.reference)
+    reference = read_exr(args.reference)
     if reference.shape[:2] != (args.height, args.width):
         print(f"error: the reference is {reference.shape[1]}x{reference.shape[0]}, "
               f"not {args.width}x{args.height}", file=sys.stderr)
