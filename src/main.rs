@@ -398,6 +398,7 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
     )
     .map_err(|e| runtime(e.into()))?;
     println!("{}", summary(&stats));
+    println!("skipped: {}", stats.rays.skipped.describe());
     Ok(())
 }
 
@@ -599,12 +600,11 @@ fn update_bar(bar: &ProgressBar, stats: &RenderStats, budget: Budget) {
 
 fn summary(stats: &RenderStats) -> String {
     format!(
-        "{} spp, {:.2} s, {} rays, {:.1} Mrays/s, {} invalid samples dropped\nskipped: {}",
+        "{} spp, {:.2} s, {} rays, {:.1} Mrays/s, {} invalid samples dropped",
         stats.samples_per_pixel,
         stats.elapsed.as_secs_f64(),
         stats.rays.total(),
         stats.mrays_per_second(),
         stats.rays.invalid_samples,
-        stats.rays.skipped.describe()
     )
 }
