@@ -194,6 +194,9 @@ impl PathLog {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PathSegment {
     pub from: Vec3,
+    /// The ray as traced (origin, direction, t_max): what a replay through
+    /// the BVH asks again (`bench::throughput`).
+    pub ray: Ray,
     /// Where the ray stopped: its hit, the light point of a shadow ray, or one
     /// scene diagonal away for a ray that left the scene.
     pub to: Vec3,
@@ -213,6 +216,8 @@ pub enum SegmentKind {
     /// Towards a light sample.
     Shadow {
         occluded: bool,
+        /// The sphere light the ray aims at, which does not block it.
+        target_sphere: Option<u32>,
     },
     /// A direction traced only to find a light.
     Gather {
@@ -450,7 +455,7 @@ impl<'a> Walk<'a> {
             }
         };
         self.radiance[term.index()] += emitted;
-        self.record(ray.origin, ray.at(hit.t()), kind, term, emitted);
+        self.record(&ray, ray.at(hit.t()), kind, term, emitted);
         vertex
     }
 
@@ -595,9 +600,12 @@ impl<'a> Walk<'a> {
         }
         let ray = light.shadow_ray;
         self.record(
-            ray.origin,
+            &ray,
             ray.at(ray.t_max),
-            SegmentKind::Shadow { occluded },
+            SegmentKind::Shadow {
+                occluded,
+                target_sphere: light.target_sphere,
+            },
             term,
             added,
         );
@@ -647,7 +655,7 @@ impl<'a> Walk<'a> {
         self.radiance[term.index()] += added;
         let hit_t = hit.map_or(0.0, |h| h.t());
         self.record(
-            ray.origin,
+            &ray,
             ray.at(hit_t),
             SegmentKind::Gather {
                 hit_light: le.max_element() > 0.0,
@@ -800,10 +808,11 @@ impl<'a> Walk<'a> {
     }
 
     #[inline(always)]
-    fn record(&mut self, from: Vec3, to: Vec3, kind: SegmentKind, term: Term, radiance: Vec3) {
+    fn record(&mut self, ray: &Ray, to: Vec3, kind: SegmentKind, term: Term, radiance: Vec3) {
         if let Some(log) = self.log.as_deref_mut() {
             log.segments.push(PathSegment {
-                from,
+                from: ray.origin,
+                ray: *ray,
                 to,
                 kind,
                 term,
@@ -819,7 +828,7 @@ impl<'a> Walk<'a> {
         if self.log.is_some() {
             let length = self.context.scene.bounds().diagonal().max(1.0);
             let to = ray.origin + ray.direction.normalize_or_zero() * length;
-            self.record(ray.origin, to, kind, term, Vec3::ZERO);
+            self.record(ray, to, kind, term, Vec3::ZERO);
         }
     }
 }

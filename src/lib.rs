@@ -25,6 +25,7 @@
 pub mod accel;
 #[cfg(feature = "gui")]
 pub mod app;
+pub mod bench;
 pub mod brdf;
 pub mod camera;
 pub mod capture;

@@ -12,6 +12,12 @@ use anyhow::Context;
 use clap::{Args, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
+use lumiere::bench::error_curve::{ErrorBench, Estimator};
+use lumiere::bench::memory::CountingAllocator;
+use lumiere::bench::peer::Peer;
+use lumiere::bench::run::{BenchConfig, run as run_bench_sections};
+use lumiere::bench::scaling::ScalingBench;
+use lumiere::bench::{Progress, Section};
 use lumiere::camera::CameraRays;
 use lumiere::export::{ImageFormat, save_image};
 use lumiere::noise::DisplayMode;
@@ -26,6 +32,10 @@ use lumiere::settings::{
 use lumiere::sidecar::Sidecar;
 use lumiere::strip::{RowSweep, SampleCounts, StripImage, StripLayout, StripRow, render_strip};
 use lumiere::{BrdfOverride, Film, LightMode, RenderContext, RenderSettings, TermSet};
+
+/// Counts heap bytes for `lumiere bench`'s memory figures (two relaxed atomics per allocation).
+#[global_allocator]
+static ALLOCATOR: CountingAllocator = CountingAllocator;
 
 #[derive(Parser)]
 #[command(
@@ -49,15 +59,83 @@ enum Command {
     Strip(StripArgs),
     /// The numerical stress suite: scenes that break naive tracers, with a table of invalid samples, leaks and energy errors.
     Stress(StressArgs),
+    /// Measure error against time, ray throughput and scaling; write CSVs and plots into a folder.
+    Bench(BenchArgs),
+}
+
+#[derive(Args)]
+struct BenchArgs {
+    /// A .gltf/.glb file, or `cornell` (the built-in Cornell box, the default).
+    #[arg(default_value = "cornell")]
+    scene: String,
+    /// Folder of the CSV files, plots and cached reference.
+    #[arg(short, long, default_value = "bench-out")]
+    output: PathBuf,
+    /// Sections to run: error, throughput, scaling (comma-separated).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "error,throughput,scaling"
+    )]
+    only: Vec<Section>,
+    /// Error curves: the last sample count (the counts are 1, 2, 4, … up to it).
+    #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    max_spp: u32,
+    /// Error curves: samples per pixel of the reference (rendered once, cached in the output folder).
+    #[arg(long, default_value_t = 4096, value_parser = clap::value_parser!(u32).range(1..=100_000_000))]
+    reference_spp: u32,
+    /// Error curves: a linear EXR of the same size to measure against, instead of rendering one.
+    #[arg(long)]
+    reference: Option<PathBuf>,
+    /// Error curves: direct-lighting strategies, one curve each (default: --light-sampling).
+    #[arg(long, value_delimiter = ',')]
+    strategies: Vec<LightSampling>,
+    /// Error curves: samplers, one curve per strategy and sampler (default: --sampler).
+    #[arg(long, value_delimiter = ',')]
+    samplers: Vec<Sampler>,
+    /// Error curves: also run this renderer's script (mitsuba: tests/reference/mitsuba_bench.py).
+    #[arg(long)]
+    peer: Option<Peer>,
+    /// Error curves: merge a peer's rows (renderer,estimator,spp,seconds,rmse,relmse); repeatable.
+    #[arg(long)]
+    peer_csv: Vec<PathBuf>,
+    /// Throughput: passes (samples per pixel) rendered and replayed.
+    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    throughput_passes: u32,
+    /// Throughput: timed runs of each measure; the fastest counts.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=100))]
+    repeats: u32,
+    /// Scaling: the largest procedural scene (the counts are 10⁴, 10⁵, … up to it).
+    #[arg(long, default_value_t = 1_000_000, value_parser = clap::value_parser!(u64).range(10..=100_000_000))]
+    max_triangles: u64,
+    /// Scaling: triangles of the glTF file written and loaded (0: none).
+    #[arg(long, default_value_t = 1_000_000, value_parser = clap::value_parser!(u64).range(0..=100_000_000))]
+    gltf_triangles: u64,
+    /// Scaling: square image sizes of the resolution rows.
+    #[arg(long, value_delimiter = ',', default_value = "128,256,512", value_parser = clap::value_parser!(u32).range(1..=8192))]
+    resolutions: Vec<u32>,
+    /// Scaling: worker thread counts of the thread rows.
+    #[arg(long, value_delimiter = ',', default_value = "1,2", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    thread_counts: Vec<u32>,
+    /// Scaling: samples per pixel of each timed render.
+    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    scaling_spp: u32,
+    /// Worker threads of every section but the thread rows (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    threads: Option<u32>,
+    #[command(flatten)]
+    options: SceneOptions,
 }
 
 /// What decides the radiance and its display: shared by `render`, `view` and `strip`.
 #[derive(Args, Clone)]
 struct SceneOptions {
-    #[arg(long, default_value_t = 640, value_parser = clap::value_parser!(u32).range(1..=16384))]
-    width: u32,
-    #[arg(long, default_value_t = 480, value_parser = clap::value_parser!(u32).range(1..=16384))]
-    height: u32,
+    /// Image width [default: 640; bench: 256].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    width: Option<u32>,
+    /// Image height [default: 480; bench: 256].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    height: Option<u32>,
     /// Lighting terms: L0 (emission), L1 (direct), L2 (one indirect bounce), L3+ (the rest); `all` = all four.
     #[arg(long, default_value = "L0,L1,L2")]
     terms: TermSet,
@@ -262,8 +340,8 @@ fn parse_exposure(s: &str) -> Result<f32, String> {
 impl SceneOptions {
     fn settings(&self) -> RenderSettings {
         RenderSettings {
-            width: self.width,
-            height: self.height,
+            width: self.width.unwrap_or(640),
+            height: self.height.unwrap_or(480),
             terms: self.terms,
             light_mode: self.lights,
             light_radius: self.light_radius,
@@ -311,6 +389,7 @@ fn main() -> ExitCode {
         Some(Command::View(args)) => run_view(args, false),
         Some(Command::Strip(args)) => run_strip(&args),
         Some(Command::Stress(args)) => run_stress(&args),
+        Some(Command::Bench(args)) => run_bench(&args),
         None => run_view(ViewArgs::parse_from(["view"]), true),
     };
     match result {
@@ -495,6 +574,101 @@ fn run_strip(args: &StripArgs) -> Result<(), Failure> {
     image
         .save_png(&args.output)
         .map_err(|e| runtime(e.into()))?;
+    Ok(())
+}
+
+/// The bench's progress on a spinner (hidden if stderr is not a terminal).
+struct Spinner(ProgressBar);
+
+impl Progress for Spinner {
+    fn message(&self, text: &str) {
+        self.0.set_message(text.to_string());
+    }
+}
+
+fn run_bench(args: &BenchArgs) -> Result<(), Failure> {
+    let mut settings = args.options.settings();
+    settings.width = args.options.width.unwrap_or(256);
+    settings.height = args.options.height.unwrap_or(256);
+    settings.validate().map_err(|e| usage(anyhow::anyhow!(e)))?;
+    check_memory(settings.width, settings.height).map_err(usage)?;
+    if args.only.is_empty() {
+        return Err(usage(anyhow::anyhow!(
+            "--only names no section (expected error, throughput or scaling)"
+        )));
+    }
+    if args.reference.is_none() && args.reference_spp < args.max_spp {
+        return Err(usage(anyhow::anyhow!(
+            "--reference-spp {} is below --max-spp {}: the reference must converge further than the curves",
+            args.reference_spp,
+            args.max_spp
+        )));
+    }
+    for &size in &args.resolutions {
+        check_memory(size, size).map_err(usage)?;
+    }
+    let strategies = if args.strategies.is_empty() {
+        vec![settings.light_sampling]
+    } else {
+        args.strategies.clone()
+    };
+    let samplers = if args.samplers.is_empty() {
+        vec![settings.sampler]
+    } else {
+        args.samplers.clone()
+    };
+    let mut triangle_counts: Vec<u64> = (4..9)
+        .map(|k| 10u64.pow(k))
+        .take_while(|&n| n < args.max_triangles)
+        .collect();
+    triangle_counts.push(args.max_triangles);
+    let config = BenchConfig {
+        sections: args.only.clone(),
+        error: ErrorBench {
+            scene: args.scene.clone(),
+            settings: settings.clone(),
+            estimators: Estimator::all_pairs(&strategies, &samplers),
+            max_spp: args.max_spp,
+            reference_spp: args.reference_spp,
+            reference: args.reference.clone(),
+        },
+        peer: args.peer,
+        peer_csvs: args.peer_csv.clone(),
+        throughput_passes: args.throughput_passes,
+        throughput_repeats: args.repeats,
+        scaling: ScalingBench {
+            triangle_counts,
+            gltf_triangles: args.gltf_triangles,
+            resolutions: args.resolutions.clone(),
+            thread_counts: args.thread_counts.iter().map(|&n| n as usize).collect(),
+            triangle_image_size: 128,
+            spp: args.scaling_spp,
+            settings,
+        },
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.unwrap_or(0) as usize)
+        .build()
+        .context("cannot start the worker threads")
+        .map_err(runtime)?;
+    let spinner = Spinner(if std::io::stderr().is_terminal() {
+        let bar = ProgressBar::new_spinner();
+        bar.enable_steady_tick(Duration::from_millis(200));
+        bar.set_style(
+            ProgressStyle::with_template("{spinner} {elapsed} {msg}")
+                .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+        );
+        bar
+    } else {
+        ProgressBar::hidden()
+    });
+    let report = pool.install(|| run_bench_sections(&config, &args.output, &spinner));
+    spinner.0.finish_and_clear();
+    let report = report.map_err(|e| match e {
+        lumiere::bench::BenchError::Invalid(_) => usage(e.into()),
+        e => runtime(e.into()),
+    })?;
+    print!("{}", report.summary());
     Ok(())
 }
 

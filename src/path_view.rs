@@ -71,8 +71,10 @@ impl RayRole {
             },
             // the path ends where this ray lands: it only looks for a light
             SegmentKind::Bounce => RayRole::LastBounce { term },
-            SegmentKind::Shadow { occluded: false } => RayRole::ShadowLit { term },
-            SegmentKind::Shadow { occluded: true } => RayRole::ShadowBlocked { term },
+            SegmentKind::Shadow {
+                occluded: false, ..
+            } => RayRole::ShadowLit { term },
+            SegmentKind::Shadow { occluded: true, .. } => RayRole::ShadowBlocked { term },
             SegmentKind::Gather { hit_light: true } => RayRole::GatherLit { term },
             SegmentKind::Gather { hit_light: false } => RayRole::GatherMissed { term },
         }

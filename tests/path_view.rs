@@ -162,7 +162,7 @@ fn a_recorded_path_is_the_probed_sample_and_starts_at_its_pixel() {
                     line.role.is_dashed(),
                     matches!(
                         segment.kind,
-                        SegmentKind::Shadow { occluded: true }
+                        SegmentKind::Shadow { occluded: true, .. }
                             | SegmentKind::Gather { hit_light: false }
                     )
                 );

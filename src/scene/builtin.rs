@@ -9,7 +9,7 @@ use super::{Camera, Material, Projection, PunctualKind, PunctualLight, Scene};
 use crate::error::SceneError;
 
 /// The Cornell box from the published measurements, in metres.
-const CORNELL_GLTF: &[u8] = include_bytes!("../../assets/cornell-box.gltf");
+pub const CORNELL_GLTF: &[u8] = include_bytes!("../../assets/cornell-box.gltf");
 
 /// Names of the built-in scenes.
 pub const NAMES: [&str; 1] = ["cornell"];

@@ -1,0 +1,307 @@
+//! Error against time: how long an estimator takes to reach a given error.
+//!
+//! One progressive render per estimator, measured at N = 1, 2, 4, … samples
+//! per pixel against a reference of M ≫ N samples (its own seed, see
+//! [`crate::capture`]): wall time of the passes so far, RMSE and relMSE
+//! ([`crate::metrics`]). For an unbiased estimator relMSE ≈ c/N, so on a
+//! log-log plot against time each curve is a line of slope −1 and the better
+//! estimator is the lower line. The figure of merit is the time to reach
+//! relMSE ≤ τ, interpolated linearly in (log t, log relMSE) between the two
+//! measured points that straddle τ ([`time_to_relmse`]).
+//!
+//! The reference is cached in the output folder under a name that hashes
+//! what decides the radiance (scene file, size, terms, lights, BRDF,
+//! bounces) and its sample count, so a change of any of them renders a new
+//! one; a reference of the estimator's own noise adds σ²/M to every measured
+//! MSE, which the default M keeps under a tenth of the last point's.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use crate::capture::{radiance_settings, reference_seed};
+use crate::export::{load_exr, save_image};
+use crate::metrics::{ReferenceImage, image_error};
+use crate::render::{Budget, render};
+use crate::scene::{Scene, builtin};
+use crate::settings::{DisplaySettings, LightSampling, RenderSettings, Sampler};
+use crate::{Film, RenderContext};
+
+use super::csv::ErrorRow;
+use super::{BenchError, Progress};
+
+/// The renderer name of lumiere's rows.
+pub const LUMIERE: &str = "lumiere";
+
+/// The relMSE thresholds of the figure of merit.
+pub const RELMSE_THRESHOLDS: [f64; 2] = [1e-2, 1e-3];
+
+/// One curve: a direct-lighting strategy with a sampler.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Estimator {
+    pub light_sampling: LightSampling,
+    pub sampler: Sampler,
+}
+
+impl Estimator {
+    /// `strategy/sampler`, as in the CSV's `estimator` column.
+    pub fn label(&self) -> String {
+        format!("{}/{}", self.light_sampling.label(), self.sampler.label())
+    }
+
+    /// Every strategy with every sampler.
+    pub fn all_pairs(strategies: &[LightSampling], samplers: &[Sampler]) -> Vec<Estimator> {
+        strategies
+            .iter()
+            .flat_map(|&light_sampling| {
+                samplers.iter().map(move |&sampler| Estimator {
+                    light_sampling,
+                    sampler,
+                })
+            })
+            .collect()
+    }
+}
+
+/// What the error section measures.
+#[derive(Clone, Debug)]
+pub struct ErrorBench {
+    /// `cornell` or a glTF path, as given on the command line.
+    pub scene: String,
+    /// Size, terms and every other setting; the estimators replace light sampling and sampler.
+    pub settings: RenderSettings,
+    pub estimators: Vec<Estimator>,
+    /// The last sample count (the counts are 1, 2, 4, … up to it).
+    pub max_spp: u32,
+    /// Samples per pixel of a rendered reference.
+    pub reference_spp: u32,
+    /// A reference EXR to use instead of rendering one.
+    pub reference: Option<PathBuf>,
+}
+
+/// 1, 2, 4, … below `max_spp`, then `max_spp`.
+pub fn sample_counts(max_spp: u32) -> Vec<u32> {
+    let mut counts: Vec<u32> = (0..32)
+        .map(|k| 1u32 << k)
+        .take_while(|&n| n < max_spp)
+        .collect();
+    counts.push(max_spp.max(1));
+    counts
+}
+
+/// The first time a curve of (seconds, relMSE) points, in order of growing
+/// spp, reaches relMSE ≤ `threshold`: the first point's time if it is
+/// already there, else log-log interpolation between the last point above
+/// and the first at or below; `None` if no point reaches it.
+pub fn time_to_relmse(points: &[(f64, f64)], threshold: f64) -> Option<f64> {
+    let first = points.first()?;
+    if first.1 <= threshold {
+        return Some(first.0);
+    }
+    points.windows(2).find_map(|pair| {
+        let ((t0, e0), (t1, e1)) = (pair[0], pair[1]);
+        if !(e0 > threshold && e1 <= threshold) {
+            return None;
+        }
+        if t0 <= 0.0 || e1 <= 0.0 {
+            return Some(t1);
+        }
+        let s = (threshold.ln() - e0.ln()) / (e1.ln() - e0.ln());
+        Some((t0.ln() + s * (t1.ln() - t0.ln())).exp())
+    })
+}
+
+/// The times of one curve (renderer, estimator) to each of [`RELMSE_THRESHOLDS`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct CurveSummary {
+    pub renderer: String,
+    pub estimator: String,
+    pub last_spp: u32,
+    pub last_relmse: f64,
+    /// One per threshold, in the order of [`RELMSE_THRESHOLDS`].
+    pub seconds_to: [Option<f64>; 2],
+}
+
+/// The curves of `rows`, grouped by (renderer, estimator) in order of first appearance.
+pub fn curves(rows: &[ErrorRow]) -> Vec<(String, String, Vec<ErrorRow>)> {
+    let mut curves: Vec<(String, String, Vec<ErrorRow>)> = Vec::new();
+    for row in rows {
+        match curves
+            .iter_mut()
+            .find(|(r, e, _)| *r == row.renderer && *e == row.estimator)
+        {
+            Some((_, _, points)) => points.push(row.clone()),
+            None => curves.push((
+                row.renderer.clone(),
+                row.estimator.clone(),
+                vec![row.clone()],
+            )),
+        }
+    }
+    for (_, _, points) in &mut curves {
+        points.sort_by_key(|p| p.spp);
+    }
+    curves
+}
+
+/// The figure of merit of every curve of `rows`.
+pub fn summarize(rows: &[ErrorRow]) -> Vec<CurveSummary> {
+    curves(rows)
+        .into_iter()
+        .map(|(renderer, estimator, points)| {
+            let xy: Vec<(f64, f64)> = points.iter().map(|p| (p.seconds, p.relmse)).collect();
+            let last = points.last().expect("a curve has a point");
+            CurveSummary {
+                renderer,
+                estimator,
+                last_spp: last.spp,
+                last_relmse: last.relmse,
+                seconds_to: RELMSE_THRESHOLDS.map(|t| time_to_relmse(&xy, t)),
+            }
+        })
+        .collect()
+}
+
+/// What identifies the scene's content: the built-in name, or a file's path, size and modification time.
+fn scene_identity(scene: &str) -> String {
+    if builtin::NAMES.contains(&scene) {
+        return format!("builtin:{scene}");
+    }
+    let metadata = std::fs::metadata(scene).ok();
+    let size = metadata.as_ref().map_or(0, |m| m.len());
+    let modified = metadata
+        .and_then(|m| m.modified().ok())
+        .and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok())
+        .map_or(0, |d| d.as_nanos());
+    let path = std::fs::canonicalize(scene).unwrap_or_else(|_| PathBuf::from(scene));
+    format!("file:{}:{size}:{modified}", path.display())
+}
+
+/// 64-bit FNV-1a: a stable hash for cache file names (std's hasher may change between releases).
+fn fnv1a(text: &str) -> u64 {
+    text.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+        (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}
+
+/// The cached reference's file name for `scene`, `settings` and `spp`.
+pub fn reference_file_name(scene: &str, settings: &RenderSettings, spp: u32) -> String {
+    let radiance = serde_json::to_string(&radiance_settings(settings)).unwrap_or_default();
+    let key = format!("{}|{radiance}|{spp}", scene_identity(scene));
+    format!("reference-{:016x}.exr", fnv1a(&key))
+}
+
+/// The reference of `bench`: its `--reference` file, the cached one in
+/// `folder`, or a new render (then saved there). Returns it with its path.
+pub fn reference(
+    bench: &ErrorBench,
+    scene: &Arc<Scene>,
+    folder: &Path,
+    progress: &dyn Progress,
+) -> Result<(ReferenceImage, PathBuf), BenchError> {
+    let settings = &bench.settings;
+    let (path, cached) = match &bench.reference {
+        Some(path) => (path.clone(), true),
+        None => {
+            let path = folder.join(reference_file_name(
+                &bench.scene,
+                settings,
+                bench.reference_spp,
+            ));
+            let exists = path.exists();
+            (path, exists)
+        }
+    };
+    if cached {
+        let (width, height, radiance) = load_exr(&path)?;
+        if (width, height) != (settings.width, settings.height) {
+            return Err(BenchError::file(
+                &path,
+                format!(
+                    "the reference is {width}×{height}, the bench renders {}×{} (set --width/--height to match)",
+                    settings.width, settings.height
+                ),
+            ));
+        }
+        let label = path
+            .file_name()
+            .map_or_else(String::new, |n| n.to_string_lossy().into());
+        return Ok((
+            ReferenceImage {
+                width,
+                height,
+                radiance,
+                label,
+            },
+            path,
+        ));
+    }
+    progress.message(&format!("reference: {} spp", bench.reference_spp));
+    let mut reference_settings = radiance_settings(settings);
+    reference_settings.seed = reference_seed(settings.seed);
+    let context = RenderContext::new(scene.clone(), reference_settings);
+    let mut film = Film::new(settings.width, settings.height);
+    render(
+        &context,
+        &mut film,
+        Budget::Samples(bench.reference_spp),
+        |s| {
+            progress.message(&format!(
+                "reference: {}/{} spp",
+                s.samples_per_pixel, bench.reference_spp
+            ))
+        },
+    );
+    let radiance = film.radiance(settings.terms);
+    save_image(
+        &path,
+        settings.width,
+        settings.height,
+        &radiance,
+        DisplaySettings::default(),
+    )?;
+    let image = ReferenceImage {
+        width: settings.width,
+        height: settings.height,
+        radiance,
+        label: format!("{} spp", bench.reference_spp),
+    };
+    Ok((image, path))
+}
+
+/// Renders every estimator of `bench` progressively to its sample counts,
+/// measuring time and error against `reference` after each.
+pub fn measure_curves(
+    bench: &ErrorBench,
+    scene: &Arc<Scene>,
+    reference: &ReferenceImage,
+    progress: &dyn Progress,
+) -> Vec<ErrorRow> {
+    let counts = sample_counts(bench.max_spp);
+    let mut rows = Vec::new();
+    for estimator in &bench.estimators {
+        let mut settings = bench.settings.clone();
+        settings.light_sampling = estimator.light_sampling;
+        settings.sampler = estimator.sampler;
+        let context = RenderContext::new(scene.clone(), settings.clone());
+        let mut film = Film::new(settings.width, settings.height);
+        let (mut done, mut seconds) = (0, 0.0);
+        for &spp in &counts {
+            progress.message(&format!("error: {} at {spp} spp", estimator.label()));
+            let stats = render(&context, &mut film, Budget::Samples(spp - done), |_| {});
+            done = spp;
+            seconds += stats.elapsed.as_secs_f64();
+            // measured outside the timed passes
+            let error = image_error(&film.radiance(settings.terms), &reference.radiance)
+                .expect("film and reference have the same size");
+            rows.push(ErrorRow {
+                renderer: LUMIERE.into(),
+                estimator: estimator.label(),
+                spp,
+                seconds,
+                rmse: error.rmse,
+                relmse: error.relmse,
+            });
+        }
+    }
+    rows
+}

@@ -1,0 +1,154 @@
+//! A peer renderer's error curve, run as a separate program.
+//!
+//! The contract with the peer's script: it renders `<scene.gltf>` at the
+//! given size and sample counts with a path tracer of `--max-depth` segments
+//! (3 = L0 + L1 + L2, Mitsuba's convention), measures each image against
+//! `--reference <ref.exr>` and writes `<out>.csv` with the columns of
+//! [`super::csv::ERROR_COLUMNS`]. A missing interpreter, script or package
+//! skips the peer with a message; it never fails the bench.
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::str::FromStr;
+
+use crate::scene::builtin;
+use crate::settings::{RenderSettings, Term};
+
+use super::csv::{ErrorRow, read_error_csv};
+use super::{BenchError, Progress};
+
+/// Renderers lumiere can run for comparison.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Peer {
+    Mitsuba,
+}
+
+impl Peer {
+    pub const ALL: [Peer; 1] = [Peer::Mitsuba];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Peer::Mitsuba => "mitsuba",
+        }
+    }
+
+    /// The script, relative to the repository root.
+    pub fn script(self) -> &'static str {
+        match self {
+            Peer::Mitsuba => "tests/reference/mitsuba_bench.py",
+        }
+    }
+}
+
+impl FromStr for Peer {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        Self::ALL
+            .into_iter()
+            .find(|p| p.label().eq_ignore_ascii_case(s.trim()))
+            .ok_or_else(|| format!("unknown peer renderer '{s}' (expected: mitsuba)"))
+    }
+}
+
+impl fmt::Display for Peer {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.label())
+    }
+}
+
+/// What running a peer gave.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PeerRun {
+    Rows(Vec<ErrorRow>),
+    /// Why it did not run, for the summary.
+    Skipped(String),
+}
+
+/// Path segments of the peer's paths for `settings`' terms, if they are L0 up
+/// to some L_k (a peer's path tracer cannot leave out the lower terms).
+pub fn max_depth(settings: &RenderSettings) -> Option<u32> {
+    let terms = settings.terms;
+    let reflections = terms.max_reflections()?.min(settings.max_bounces);
+    let prefix = Term::ALL.iter().take_while(|t| terms.contains(**t)).count();
+    let contiguous = terms.iter().count() == prefix;
+    (contiguous && terms.contains(Term::L0)).then_some(reflections.saturating_add(1))
+}
+
+/// The scene as a glTF file the peer can read: the file itself, or the
+/// built-in Cornell box written into `folder`.
+fn scene_file(scene: &str, folder: &Path) -> Result<PathBuf, BenchError> {
+    if scene != "cornell" {
+        return Ok(PathBuf::from(scene));
+    }
+    let path = folder.join("cornell-box.gltf");
+    std::fs::write(&path, builtin::CORNELL_GLTF)
+        .map_err(|e| BenchError::file(&path, format!("cannot write: {e}")))?;
+    Ok(path)
+}
+
+fn find_script(peer: Peer) -> Option<PathBuf> {
+    [
+        PathBuf::from(peer.script()),
+        Path::new(env!("CARGO_MANIFEST_DIR")).join(peer.script()),
+    ]
+    .into_iter()
+    .find(|p| p.is_file())
+}
+
+/// Runs `peer` on `scene` at `settings`' size and terms and `counts` samples
+/// per pixel against `reference`, its CSV written into `folder`.
+pub fn run(
+    peer: Peer,
+    scene: &str,
+    settings: &RenderSettings,
+    reference: &Path,
+    counts: &[u32],
+    folder: &Path,
+    progress: &dyn Progress,
+) -> Result<PeerRun, BenchError> {
+    let Some(script) = find_script(peer) else {
+        return Ok(PeerRun::Skipped(format!("{} not found", peer.script())));
+    };
+    let Some(depth) = max_depth(settings) else {
+        return Ok(PeerRun::Skipped(format!(
+            "terms {} are not L0 up to some L_k, which {} cannot render",
+            settings.terms,
+            peer.label()
+        )));
+    };
+    let scene_path = scene_file(scene, folder)?;
+    let csv = folder.join(format!("{}.csv", peer.label()));
+    let spp: Vec<String> = counts.iter().map(u32::to_string).collect();
+    progress.message(&format!("error: {} at {} spp", peer.label(), spp.join(",")));
+    let output = Command::new("python3")
+        .arg(&script)
+        .arg(&scene_path)
+        .arg("--reference")
+        .arg(reference)
+        .args(["--width", &settings.width.to_string()])
+        .args(["--height", &settings.height.to_string()])
+        .args(["--max-depth", &depth.to_string()])
+        .args(["--spp", &spp.join(",")])
+        .arg("--out")
+        .arg(&csv)
+        .output();
+    let output = match output {
+        Ok(output) => output,
+        Err(e) => return Ok(PeerRun::Skipped(format!("cannot run python3: {e}"))),
+    };
+    if !output.status.success() {
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        let last = stderr
+            .lines()
+            .rev()
+            .find(|l| !l.trim().is_empty())
+            .unwrap_or("");
+        return Ok(PeerRun::Skipped(format!(
+            "{} failed ({}): {last}",
+            peer.script(),
+            output.status
+        )));
+    }
+    Ok(PeerRun::Rows(read_error_csv(&csv)?))
+}

@@ -1,0 +1,368 @@
+//! `lumiere bench`: a tiny run's files and columns, the time-to-threshold
+//! interpolation, peer CSV parsing, the reference's cache key, the glTF
+//! writer, and the throughput replay tracing exactly the renderer's rays.
+//! Nothing here is timed.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::Arc;
+
+use lumiere::bench::csv::{ErrorRow, parse_error_csv};
+use lumiere::bench::error_curve::{
+    ErrorBench, Estimator, reference_file_name, sample_counts, summarize, time_to_relmse,
+};
+use lumiere::bench::run::{BenchConfig, run};
+use lumiere::bench::scaling::{ScalingBench, procedural_scene, write_gltf};
+use lumiere::bench::throughput::{RayKind, record_segments, replay_matches};
+use lumiere::bench::{Section, Silent};
+use lumiere::render::{Budget, render};
+use lumiere::scene::{builtin, gltf};
+use lumiere::settings::{LightSampling, Sampler};
+use lumiere::{Film, RenderContext, RenderSettings, Term, TermSet};
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("lumiere-bench-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn tiny_settings() -> RenderSettings {
+    RenderSettings {
+        width: 32,
+        height: 32,
+        ..RenderSettings::default()
+    }
+}
+
+fn tiny_config() -> BenchConfig {
+    // direct lighting only: a 32×32 image of L2 has fireflies that make a
+    // few-spp relMSE curve jump about
+    let settings = RenderSettings {
+        terms: "L0,L1".parse().unwrap(),
+        ..tiny_settings()
+    };
+    BenchConfig {
+        sections: Section::ALL.to_vec(),
+        error: ErrorBench {
+            scene: "cornell".into(),
+            settings: settings.clone(),
+            estimators: Estimator::all_pairs(
+                &[LightSampling::Mis, LightSampling::Area],
+                &[Sampler::Independent],
+            ),
+            max_spp: 16,
+            reference_spp: 256,
+            reference: None,
+        },
+        peer: None,
+        peer_csvs: Vec::new(),
+        throughput_passes: 1,
+        throughput_repeats: 1,
+        scaling: ScalingBench {
+            triangle_counts: vec![200, 2000],
+            gltf_triangles: 500,
+            resolutions: vec![16, 24],
+            thread_counts: vec![1, 2],
+            triangle_image_size: 16,
+            spp: 1,
+            settings,
+        },
+    }
+}
+
+fn csv_rows(path: &Path) -> (String, Vec<Vec<String>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap().to_string();
+    let rows = lines
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    (header, rows)
+}
+
+#[test]
+fn a_tiny_bench_writes_every_file_with_its_columns() {
+    let folder = scratch("tiny");
+    let report = run(&tiny_config(), &folder, &Silent).unwrap();
+    for name in [
+        "error.csv",
+        "error.png",
+        "throughput.csv",
+        "scaling.csv",
+        "scaling.png",
+    ] {
+        assert!(folder.join(name).is_file(), "{name} missing");
+    }
+    let (header, rows) = csv_rows(&folder.join("error.csv"));
+    assert_eq!(header, "renderer,estimator,spp,seconds,rmse,relmse");
+    assert_eq!(rows.len(), 2 * sample_counts(16).len());
+    for estimator in ["mis/independent", "area/independent"] {
+        let curve: Vec<&Vec<String>> = rows.iter().filter(|r| r[1] == estimator).collect();
+        let spp: Vec<u32> = curve.iter().map(|r| r[2].parse().unwrap()).collect();
+        assert_eq!(spp, [1, 2, 4, 8, 16]);
+        let relmse: Vec<f64> = curve.iter().map(|r| r[5].parse().unwrap()).collect();
+        assert!(relmse[0] > relmse[4], "{estimator}: relMSE {relmse:?}");
+    }
+    let (header, rows) = csv_rows(&folder.join("throughput.csv"));
+    assert_eq!(header, "measure,rays_of,rays,seconds,mrays_per_second");
+    assert_eq!(rows[0][0], "renderer");
+    assert_eq!(rows[1][0], "traversal");
+    assert_eq!(
+        rows[0][2], rows[1][2],
+        "the replay traces as many rays as the renderer"
+    );
+    let (header, rows) = csv_rows(&folder.join("scaling.csv"));
+    assert!(header.starts_with("axis,triangles,width,height,threads,load_seconds,build_seconds"));
+    let axes: Vec<&str> = rows.iter().map(|r| r[0].as_str()).collect();
+    assert_eq!(
+        axes,
+        [
+            "triangles",
+            "triangles",
+            "gltf-triangles",
+            "resolution",
+            "resolution",
+            "threads",
+            "threads"
+        ]
+    );
+    let threads: Vec<&str> = rows[5..].iter().map(|r| r[4].as_str()).collect();
+    assert_eq!(threads, ["1", "2"]);
+    // the glTF file is removed after loading
+    assert!(!folder.join("scaling-500.gltf").exists());
+    assert!(report.summary().contains("renderer ÷ traversal"));
+
+    // a second run finds the cached reference instead of rendering one
+    let references = |dir: &Path| {
+        std::fs::read_dir(dir)
+            .unwrap()
+            .filter(|e| {
+                e.as_ref()
+                    .unwrap()
+                    .file_name()
+                    .to_string_lossy()
+                    .starts_with("reference-")
+            })
+            .count()
+    };
+    let mut config = tiny_config();
+    config.sections = vec![Section::Error];
+    run(&config, &folder, &Silent).unwrap();
+    assert_eq!(references(&folder), 1);
+    std::fs::remove_dir_all(&folder).unwrap();
+}
+
+#[test]
+fn time_to_threshold_is_log_log_interpolation() {
+    // relMSE = 0.1 / t: a line of slope −1 in log-log, crossing 0.03 at t = 10/3
+    let curve: Vec<(f64, f64)> = [1.0, 2.0, 4.0, 8.0].iter().map(|&t| (t, 0.1 / t)).collect();
+    let t = time_to_relmse(&curve, 0.03).unwrap();
+    assert!((t - 10.0 / 3.0).abs() < 1e-9, "{t}");
+    // exactly on a measured point
+    assert!((time_to_relmse(&curve, 0.025).unwrap() - 4.0).abs() < 1e-9);
+    // already below at the first point, never reached, empty
+    assert_eq!(time_to_relmse(&curve, 0.5), Some(1.0));
+    assert_eq!(time_to_relmse(&curve, 1e-3), None);
+    assert_eq!(time_to_relmse(&[], 1e-3), None);
+    // a noisy curve: the first crossing counts
+    let noisy = [(1.0, 0.1), (2.0, 0.005), (4.0, 0.02), (8.0, 0.001)];
+    let t = time_to_relmse(&noisy, 0.01).unwrap();
+    assert!(t > 1.0 && t < 2.0, "{t}");
+}
+
+#[test]
+fn sample_counts_double_up_to_the_last() {
+    assert_eq!(sample_counts(1), [1]);
+    assert_eq!(sample_counts(8), [1, 2, 4, 8]);
+    assert_eq!(sample_counts(12), [1, 2, 4, 8, 12]);
+}
+
+#[test]
+fn peer_rows_merge_into_the_summary() {
+    let text = "renderer,estimator,spp,seconds,rmse,relmse\n\
+                mitsuba,path,1,0.5,0.3,0.1\n\
+                mitsuba,path,4,2.0,0.15,0.025\n\
+                mitsuba,path,16,8.0,0.07,0.00625\n";
+    let mut rows = parse_error_csv(text, Path::new("peer.csv")).unwrap();
+    assert_eq!(rows.len(), 3);
+    assert_eq!(rows[2].spp, 16);
+    rows.push(ErrorRow {
+        renderer: "lumiere".into(),
+        estimator: "mis/independent".into(),
+        spp: 1,
+        seconds: 0.1,
+        rmse: 0.3,
+        relmse: 0.001,
+    });
+    let curves = summarize(&rows);
+    assert_eq!(curves.len(), 2);
+    assert_eq!(curves[0].renderer, "mitsuba");
+    // 0.025 → 0.00625 over 2 s → 8 s: slope −1, so 1e-2 at 5 s; 1e-3 not reached
+    assert!((curves[0].seconds_to[0].unwrap() - 5.0).abs() < 1e-9);
+    assert_eq!(curves[0].seconds_to[1], None);
+    assert_eq!(curves[1].seconds_to[1], Some(0.1));
+}
+
+#[test]
+fn a_malformed_peer_csv_is_a_clear_error() {
+    let path = Path::new("peer.csv");
+    let header = parse_error_csv("renderer,spp,seconds\nmitsuba,1,0.5\n", path).unwrap_err();
+    assert!(
+        header.to_string().contains("peer.csv: line 1: header"),
+        "{header}"
+    );
+    let number = parse_error_csv(
+        "renderer,estimator,spp,seconds,rmse,relmse\nmitsuba,path,1,fast,0.3,0.1\n",
+        path,
+    )
+    .unwrap_err();
+    assert!(
+        number.to_string().contains("line 2: seconds 'fast'"),
+        "{number}"
+    );
+    let fields = parse_error_csv(
+        "renderer,estimator,spp,seconds,rmse,relmse\nmitsuba,path,1\n",
+        path,
+    )
+    .unwrap_err();
+    assert!(
+        fields.to_string().contains("3 fields, expected 6"),
+        "{fields}"
+    );
+    assert!(
+        parse_error_csv("", path)
+            .unwrap_err()
+            .to_string()
+            .contains("empty")
+    );
+}
+
+#[test]
+fn a_malformed_peer_csv_fails_the_command_with_its_name() {
+    let folder = scratch("peer-cli");
+    let peer = folder.join("peer.csv");
+    std::fs::write(&peer, "renderer,estimator,spp\nmitsuba,path,1\n").unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args([
+            "bench",
+            "--only",
+            "error",
+            "--width",
+            "8",
+            "--height",
+            "8",
+            "--max-spp",
+            "1",
+            "--reference-spp",
+            "1",
+            "-o",
+        ])
+        .arg(&folder)
+        .arg("--peer-csv")
+        .arg(&peer)
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("peer.csv: line 1: header"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    let bad_section = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(["bench", "--only", "speed", "-o"])
+        .arg(&folder)
+        .output()
+        .unwrap();
+    assert_eq!(bad_section.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad_section.stderr).contains("unknown bench section 'speed'"));
+    std::fs::remove_dir_all(&folder).unwrap();
+}
+
+#[test]
+fn the_reference_cache_key_follows_the_radiance_not_the_estimator() {
+    let settings = tiny_settings();
+    let key = reference_file_name("cornell", &settings, 64);
+    let other_estimator = RenderSettings {
+        light_sampling: LightSampling::Area,
+        sampler: Sampler::Sobol,
+        seed: 7,
+        ..settings.clone()
+    };
+    assert_eq!(reference_file_name("cornell", &other_estimator, 64), key);
+    let other_terms = RenderSettings {
+        terms: TermSet::only(Term::L1),
+        ..settings.clone()
+    };
+    assert_ne!(reference_file_name("cornell", &other_terms, 64), key);
+    let other_size = RenderSettings {
+        width: 33,
+        ..settings.clone()
+    };
+    assert_ne!(reference_file_name("cornell", &other_size, 64), key);
+    assert_ne!(reference_file_name("cornell", &settings, 128), key);
+}
+
+#[test]
+fn the_written_gltf_loads_as_the_same_scene() {
+    let folder = scratch("gltf");
+    let scene = procedural_scene(3000);
+    let path = folder.join("sphere.gltf");
+    write_gltf(&scene, &path).unwrap();
+    let loaded = gltf::load(&path).unwrap();
+    assert_eq!(loaded.triangles.len(), scene.triangles.len());
+    assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
+    let emitters = |s: &lumiere::Scene| {
+        s.triangles
+            .iter()
+            .filter(|t| s.materials[t.material as usize].is_emissive())
+            .count()
+    };
+    assert_eq!(emitters(&loaded), 2);
+    let emission = loaded
+        .materials
+        .iter()
+        .map(|m| m.emission.x)
+        .fold(0.0, f32::max);
+    assert!((emission - 8.0).abs() < 1e-5, "{emission}");
+    std::fs::remove_dir_all(&folder).unwrap();
+}
+
+/// The replay traces the rays the renderer traced, as many of each kind,
+/// and each finds what the renderer found.
+#[test]
+fn the_replay_traces_the_renderers_rays_and_finds_the_same_hits() {
+    for light_sampling in [LightSampling::Mis, LightSampling::Brdf] {
+        let settings = RenderSettings {
+            width: 16,
+            height: 12,
+            terms: TermSet::ALL,
+            light_sampling,
+            light_samples: 2,
+            ..RenderSettings::default()
+        };
+        let context = RenderContext::new(Arc::new(builtin::cornell()), settings);
+        let mut film = Film::new(16, 12);
+        let stats = render(&context, &mut film, Budget::Samples(2), |_| {});
+        let segments = record_segments(&context, 2);
+        let count = |kind: RayKind| {
+            segments
+                .iter()
+                .filter(|s| RayKind::of(s.kind) == kind)
+                .count() as u64
+        };
+        assert_eq!(count(RayKind::Camera), stats.rays.camera);
+        assert_eq!(count(RayKind::Shadow), stats.rays.shadow);
+        assert_eq!(count(RayKind::Bounce), stats.rays.bounce);
+        assert_eq!(count(RayKind::Gather), stats.rays.gather);
+        assert!(stats.rays.shadow + stats.rays.gather > 0);
+        let mismatches = segments
+            .iter()
+            .filter(|s| !replay_matches(&context, s))
+            .count();
+        assert_eq!(
+            mismatches,
+            0,
+            "{light_sampling}: of {} rays",
+            segments.len()
+        );
+    }
+}
