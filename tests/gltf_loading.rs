@@ -882,3 +882,55 @@ fn buffer_uri_naming_a_directory_or_device_is_refused() {
     }
     std::fs::remove_dir_all(&directory).unwrap();
 }
+
+#[test]
+fn sparse_indices_beyond_the_count_or_unordered_are_refused() {
+    // one sparse value (12 bytes at 40) for the vertex named by the byte at 36
+    let sparse = |count: u32| {
+        GLB_JSON
+            .replace(
+                "\"max\":[1,1,0]}",
+                &format!(
+                    "\"max\":[1,1,0],\"sparse\":{{\"count\":{count},\
+                     \"indices\":{{\"bufferView\":1,\"componentType\":5121}},\
+                     \"values\":{{\"bufferView\":2}}}}}}"
+                ),
+            )
+            .replace(
+                "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],\"buffers\":[{\"byteLength\":36}]",
+                "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36},\
+                 {\"buffer\":0,\"byteOffset\":36,\"byteLength\":2},\
+                 {\"buffer\":0,\"byteOffset\":40,\"byteLength\":24}],\
+                 \"buffers\":[{\"byteLength\":64}]",
+            )
+    };
+    let bin = |indices: [u8; 2]| {
+        let mut bin = triangle_bin();
+        bin.extend([indices[0], indices[1], 0, 0]);
+        bin.extend(
+            [0.0f32, 4.0, 0.0, 0.0, 5.0, 0.0]
+                .iter()
+                .flat_map(|v| v.to_le_bytes()),
+        );
+        bin
+    };
+    let scene = load_slice(&glb(&sparse(1), Some(&bin([1, 0]))), "sparse.glb", None)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_close(scene.positions[1], Vec3::new(0.0, 4.0, 0.0));
+
+    let error = glb_error(&sparse(1), &bin([5, 0]));
+    assert!(
+        error.contains("accessor 0: sparse index 5 out of range (3 elements)"),
+        "{error}"
+    );
+    let error = glb_error(&sparse(2), &bin([2, 1]));
+    assert!(
+        error.contains("sparse indices are not strictly increasing"),
+        "{error}"
+    );
+    let error = glb_error(&sparse(4), &bin([0, 1]));
+    assert!(
+        error.contains("sparse count 4 must lie between 1 and"),
+        "{error}"
+    );
+}
