@@ -25,7 +25,7 @@ const MUTANTS_PER_INPUT: usize = 1000;
 /// One mutant in this many also goes through a file and `builtin::load`, as the CLI loads.
 const THROUGH_FILE_EVERY: usize = 10;
 /// The seed (`LUMIERE_FUZZ_SEED` overrides it for a search elsewhere).
-const SEED: u64 = 0x6c75_6d69_6572_65;
+const SEED: u64 = 0x006c_756d_6965_7265; // "lumiere"
 /// Longest a single load (and its 8×8 render) may take.
 const MAX_LOAD_TIME: Duration = Duration::from_secs(2);
 
@@ -71,6 +71,11 @@ const EXTREME_NUMBERS: [&str; 14] = [
 
 // ---------------------------------------------------------------------------
 // Mutations
+
+fn extreme_number(rng: &mut Rng) -> Value {
+    let text: &&str = rng.pick(&EXTREME_NUMBERS);
+    serde_json::from_str(text).unwrap()
+}
 
 fn flip_bytes(bytes: &mut [u8], rng: &mut Rng) {
     for _ in 0..1 + rng.below(4) {
@@ -150,7 +155,7 @@ fn edit_value(
                 let other = if rng.below(2) == 0 {
                     old.clone()
                 } else {
-                    serde_json::from_str(*rng.pick(&EXTREME_NUMBERS)).unwrap()
+                    extreme_number(rng)
                 };
                 *duplicate = Some((key.clone(), other));
             }
@@ -165,7 +170,7 @@ fn edit_value(
                     ])
                     .clone();
             }
-            _ => *value = serde_json::from_str(*rng.pick(&EXTREME_NUMBERS)).unwrap(),
+            _ => *value = extreme_number(rng),
         }
         return true;
     }
