@@ -654,6 +654,15 @@ fn non_finite_positions_normals_and_uvs_are_refused() {
             && error.contains("not finite"),
         "{error}"
     );
+    // finite, but beyond what the BVH's arithmetic holds (a misaligned buffer view reads such values)
+    let error = glb_error(ATTRIBUTES_JSON, &attributes_bin(3, 4.6e24));
+    assert!(
+        error.contains(
+            "mesh \"Tri\" primitive 0: vertex 1 has a world-space coordinate of 4.600e24 m, \
+             beyond ±1e12 m"
+        ),
+        "{error}"
+    );
     let error = glb_error(ATTRIBUTES_JSON, &attributes_bin(15, f32::INFINITY));
     assert!(
         error.contains("mesh \"Tri\" primitive 0: vertex 2 NORMAL") && error.contains("not finite"),

@@ -89,6 +89,11 @@ const MAX_ZERO_FILLED_BYTES: usize = 64 << 20;
 /// lets a small file describe more geometry than memory holds).
 const MAX_SCENE_ELEMENTS: usize = 1 << 26;
 
+/// Largest world-space coordinate of a vertex, in metres (about seven light
+/// hours): beyond it the BVH builder's surface areas, times triangle counts,
+/// overflow f32 and its partitioning fails.
+const MAX_COORDINATE: f32 = 1e12;
+
 /// Largest texture width or height accepted.
 const MAX_TEXTURE_SIDE: u32 = 16384;
 
@@ -1591,6 +1596,13 @@ impl<'f> SceneBuilder<'f> {
             if !world.is_finite() {
                 return Err(format!(
                     "{primitive_label}: vertex {i} position {local} is not finite in world space"
+                ));
+            }
+            let extent = world.abs().max_element();
+            if extent > MAX_COORDINATE {
+                return Err(format!(
+                    "{primitive_label}: vertex {i} has a world-space coordinate of {extent:.3e} m, \
+                     beyond ±{MAX_COORDINATE:e} m"
                 ));
             }
             self.scene.positions.push(world);
