@@ -22,6 +22,76 @@ use rayon::prelude::*;
 use crate::color::luminance;
 use crate::settings::{Term, TermSet};
 
+// ---------------------------------------------------------------------------
+// Memory
+
+/// Film bytes per pixel for one term: Σ radiance (3 × f64) and Welford's mean and M2 (2 × f64).
+pub const TERM_BYTES_PER_PIXEL: u64 = 3 * 8 + 2 * 8;
+
+/// Bytes per pixel of one pass's samples on their way to the film: an RGB
+/// f32 triple for each of the four terms, whichever are kept.
+pub const PASS_BYTES_PER_PIXEL: u64 = Term::COUNT as u64 * 3 * 4;
+
+/// Largest film accepted on any machine, whatever its memory.
+pub const MAX_FILM_BYTES: u64 = 32 << 30;
+
+/// The ceiling when the machine's memory cannot be read.
+const FALLBACK_FILM_BYTES: u64 = 8 << 30;
+
+/// An image whose film would not fit the memory ceiling.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error(
+    "a {width}×{height} image with {terms} term(s) needs about {:.1} GiB of film \
+     ({bytes_per_pixel} bytes per pixel: {per_term} per term for its running sums \
+     and statistics, {per_pass} for a pass's samples); the limit is {:.1} GiB ({ceiling_reason})",
+    gib(*bytes),
+    gib(*ceiling),
+    per_term = TERM_BYTES_PER_PIXEL,
+    per_pass = PASS_BYTES_PER_PIXEL
+)]
+pub struct FilmTooLarge {
+    pub width: u32,
+    pub height: u32,
+    /// How many terms the film holds.
+    pub terms: usize,
+    pub bytes_per_pixel: u64,
+    /// The estimated bytes of the film.
+    pub bytes: u64,
+    /// The ceiling, from [`memory_ceiling`].
+    pub ceiling: u64,
+    pub ceiling_reason: &'static str,
+}
+
+fn gib(bytes: u64) -> f64 {
+    bytes as f64 / (1u64 << 30) as f64
+}
+
+/// Bytes per pixel of a film holding `terms`, with the pass buffer that fills it.
+pub fn bytes_per_pixel(terms: TermSet) -> u64 {
+    terms.iter().count() as u64 * TERM_BYTES_PER_PIXEL + PASS_BYTES_PER_PIXEL
+}
+
+/// The largest film accepted here, and why: half the physical memory
+/// (`MemTotal` in /proc/meminfo) but at most [`MAX_FILM_BYTES`]; 8 GiB
+/// where the memory cannot be read.
+pub fn memory_ceiling() -> (u64, &'static str) {
+    let total = std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|info| mem_total_bytes(&info));
+    match total {
+        Some(total) if total / 2 < MAX_FILM_BYTES => (total / 2, "half of this machine's memory"),
+        Some(_) => (MAX_FILM_BYTES, "the largest film accepted on any machine"),
+        None => (FALLBACK_FILM_BYTES, "the machine's memory is unknown"),
+    }
+}
+
+/// `MemTotal` of /proc/meminfo's text, in bytes.
+fn mem_total_bytes(meminfo: &str) -> Option<u64> {
+    let line = meminfo.lines().find(|l| l.starts_with("MemTotal:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    kib.checked_mul(1024)
+}
+
 /// Welford's running statistics of one pixel's sample luminance.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Welford {
@@ -106,6 +176,31 @@ pub struct Film {
 }
 
 impl Film {
+    /// Checks that a `width`×`height` film of `terms` fits under [`memory_ceiling`].
+    pub fn check_memory(width: u32, height: u32, terms: TermSet) -> Result<(), FilmTooLarge> {
+        let per_pixel = bytes_per_pixel(terms);
+        let bytes = u64::from(width) * u64::from(height) * per_pixel;
+        let (ceiling, ceiling_reason) = memory_ceiling();
+        if bytes <= ceiling {
+            return Ok(());
+        }
+        Err(FilmTooLarge {
+            width,
+            height,
+            terms: terms.iter().count(),
+            bytes_per_pixel: per_pixel,
+            bytes,
+            ceiling,
+            ceiling_reason,
+        })
+    }
+
+    /// A film for `terms`, refused (before any allocation) if it would not fit in memory.
+    pub fn try_new(width: u32, height: u32, terms: TermSet) -> Result<Self, FilmTooLarge> {
+        Self::check_memory(width, height, terms)?;
+        Ok(Self::new(width, height))
+    }
+
     pub fn new(width: u32, height: u32) -> Self {
         Self {
             width,
@@ -162,6 +257,21 @@ impl Film {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn film_memory_is_estimated_per_term_and_capped() {
+        assert_eq!(bytes_per_pixel(TermSet::ALL), 4 * 40 + 48);
+        assert_eq!(bytes_per_pixel(TermSet::only(Term::L1)), 40 + 48);
+        assert_eq!(mem_total_bytes("MemTotal:       1024 kB\n"), Some(1 << 20));
+        assert_eq!(mem_total_bytes("nothing"), None);
+        let error = Film::try_new(16384, 16384, TermSet::ALL).unwrap_err();
+        assert_eq!(error.bytes, 16384 * 16384 * 208);
+        assert!(
+            error.to_string().contains("needs about 52.0 GiB"),
+            "{error}"
+        );
+        assert!(Film::try_new(640, 480, TermSet::ALL).is_ok());
+    }
 
     #[test]
     fn welford_matches_two_pass_variance() {

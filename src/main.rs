@@ -106,10 +106,10 @@ struct BenchArgs {
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=100))]
     repeats: u32,
     /// Scaling: the largest procedural scene (the counts are 10⁴, 10⁵, … up to it).
-    #[arg(long, default_value_t = 1_000_000, value_parser = clap::value_parser!(u64).range(10..=100_000_000))]
+    #[arg(long, default_value_t = 1_000_000, value_parser = clap::value_parser!(u64).range(10..=20_000_000))]
     max_triangles: u64,
     /// Scaling: triangles of the glTF file written and loaded (0: none).
-    #[arg(long, default_value_t = 1_000_000, value_parser = clap::value_parser!(u64).range(0..=100_000_000))]
+    #[arg(long, default_value_t = 1_000_000, value_parser = clap::value_parser!(u64).range(0..=20_000_000))]
     gltf_triangles: u64,
     /// Scaling: square image sizes of the resolution rows.
     #[arg(long, value_delimiter = ',', default_value = "128,256,512", value_parser = clap::value_parser!(u32).range(1..=8192))]
@@ -444,7 +444,8 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
     let job = RenderJob::from_args(args)?;
     let settings = job.settings.clone();
     settings.validate().map_err(|e| usage(anyhow::anyhow!(e)))?;
-    check_memory(settings.width, settings.height).map_err(usage)?;
+    Film::check_memory(settings.width, settings.height, settings.terms)
+        .map_err(|e| usage(e.into()))?;
     let scene = builtin::load(&job.scene).map_err(|e| runtime(e.into()))?;
     for warning in &scene.warnings {
         eprintln!("warning: {}: {warning}", job.scene);
@@ -537,7 +538,10 @@ fn run_strip(args: &StripArgs) -> Result<(), Failure> {
             .validate()
             .map_err(|e| usage(anyhow::anyhow!(e)))?;
     }
-    check_memory(base.width, base.height).map_err(usage)?;
+    for row in &rows {
+        Film::check_memory(base.width, base.height, row.settings.terms)
+            .map_err(|e| usage(e.into()))?;
+    }
     let row_labels = rows.iter().filter_map(|r| r.label.clone()).collect();
     let layout = StripLayout::new(base.width, base.height, args.spp.labels(), row_labels);
     layout.check_size().map_err(|e| usage(anyhow::anyhow!(e)))?;
@@ -591,7 +595,8 @@ fn run_bench(args: &BenchArgs) -> Result<(), Failure> {
     settings.width = args.options.width.unwrap_or(256);
     settings.height = args.options.height.unwrap_or(256);
     settings.validate().map_err(|e| usage(anyhow::anyhow!(e)))?;
-    check_memory(settings.width, settings.height).map_err(usage)?;
+    Film::check_memory(settings.width, settings.height, settings.terms)
+        .map_err(|e| usage(e.into()))?;
     if args.only.is_empty() {
         return Err(usage(anyhow::anyhow!(
             "--only names no section (expected error, throughput or scaling)"
@@ -605,7 +610,7 @@ fn run_bench(args: &BenchArgs) -> Result<(), Failure> {
         )));
     }
     for &size in &args.resolutions {
-        check_memory(size, size).map_err(usage)?;
+        Film::check_memory(size, size, settings.terms).map_err(|e| usage(e.into()))?;
     }
     let strategies = if args.strategies.is_empty() {
         vec![settings.light_sampling]
@@ -676,7 +681,9 @@ fn run_bench(args: &BenchArgs) -> Result<(), Failure> {
 fn run_view(args: ViewArgs, restore: bool) -> Result<(), Failure> {
     let settings = args.options.settings();
     settings.validate().map_err(|e| usage(anyhow::anyhow!(e)))?;
-    check_memory(settings.width, settings.height).map_err(usage)?;
+    // the viewer can switch every term on
+    Film::check_memory(settings.width, settings.height, TermSet::ALL)
+        .map_err(|e| usage(e.into()))?;
     let comparing = args.compare_light_sampling.is_some()
         || args.compare_indirect_sampling.is_some()
         || args.compare_sampler.is_some();
@@ -714,22 +721,6 @@ fn run_view(_args: ViewArgs, _restore: bool) -> Result<(), Failure> {
     Err(usage(anyhow::anyhow!(
         "this lumiere was built without the viewer (the `gui` feature); use `lumiere render`"
     )))
-}
-
-/// Refuses images whose film would not fit comfortably in memory.
-fn check_memory(width: u32, height: u32) -> anyhow::Result<()> {
-    // per pixel: 4 terms × (Σ f64×3 + Welford f64×2) + one pass of f32×3×4
-    let bytes_per_pixel = 4 * (24 + 16) + 48;
-    let bytes = width as u64 * height as u64 * bytes_per_pixel;
-    let limit = 8u64 << 30;
-    if bytes > limit {
-        anyhow::bail!(
-            "a {width}×{height} image needs about {:.1} GiB of film; the limit is {} GiB",
-            bytes as f64 / (1u64 << 30) as f64,
-            limit >> 30
-        );
-    }
-    Ok(())
 }
 
 fn progress_bar(budget: Budget) -> ProgressBar {

@@ -306,3 +306,74 @@ fn rays_are_counted_under_the_terms_they_serve() {
     assert_eq!(all.per_term.iter().sum::<u64>(), all.total());
     assert!(all.per_term.iter().all(|&n| n > 0));
 }
+
+#[test]
+fn cli_refuses_a_film_too_large_for_memory_naming_its_size() {
+    let out = lumiere()
+        .args(["render", "cornell", "-o"])
+        .arg(temp_path("huge.png"))
+        .args(["--width", "16384", "--height", "16384", "--terms", "all"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "stderr: {stderr}");
+    assert!(
+        stderr.contains("a 16384×16384 image with 4 term(s) needs about 52.0 GiB of film")
+            && stderr.contains("208 bytes per pixel")
+            && stderr.contains("the limit is"),
+        "stderr: {stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "stderr: {stderr}");
+}
+
+#[test]
+fn cli_refuses_absurd_sample_counts() {
+    for args in [
+        ["--spp", "0"],
+        ["--spp", "4294967296"],
+        ["--spp", "2147483648"],
+        ["--light-samples", "0"],
+    ] {
+        let out = lumiere()
+            .args(["render", "cornell", "-o"])
+            .arg(temp_path("absurd.png"))
+            .args(args)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains(&format!("invalid value '{}' for '{}", args[1], args[0])),
+            "{args:?}: {stderr}"
+        );
+    }
+}
+
+#[test]
+fn view_and_strip_refuse_a_film_too_large_for_memory() {
+    let strip = temp_path("huge-strip.png");
+    let strip = strip.to_str().unwrap();
+    for args in [
+        vec!["view", "--width", "16384", "--height", "16384"],
+        vec![
+            "strip",
+            "cornell",
+            "-o",
+            strip,
+            "--spp",
+            "1,4",
+            "--tile-width",
+            "16384",
+            "--tile-height",
+            "16384",
+        ],
+    ] {
+        let out = lumiere().args(&args).output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains("GiB of film") && stderr.contains("bytes per pixel"),
+            "{args:?}: {stderr}"
+        );
+    }
+}

@@ -33,9 +33,15 @@
 //! Robustness: the `gltf` crate checks references between JSON objects but
 //! not the data, and panics on some malformed input. So this module checks
 //! the GLB framing, buffer view and accessor ranges (sparse ones included),
-//! index values, finiteness of positions and transforms, and the node graph
-//! (no cycles, one parent per node) before reading anything; any panic that
-//! still happens inside the crate is caught and reported as an error.
+//! index values, finiteness of positions, normals, UVs and transforms, and
+//! the node graph (no cycles, one parent per node) before reading anything.
+//! Memory follows the file's size: every declared length is checked against
+//! the bytes present before anything is allocated from it, except accessors
+//! without a buffer view (at most 64 MiB of zeros) and images (their declared
+//! size is checked against a cap and against what their encoded bytes can
+//! hold before decoding); external URIs must name regular files. Any panic
+//! that still happens inside the crate is caught and reported as an error.
+//! `docs/robustness.md` lists every check with its test.
 
 use std::borrow::Cow;
 use std::cell::Cell;
@@ -43,7 +49,7 @@ use std::collections::{HashMap, HashSet};
 use std::f32::consts::{FRAC_PI_2, PI};
 use std::io::Cursor;
 use std::panic::{self, AssertUnwindSafe};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Once;
 
 use glam::{Affine3A, Mat3, Mat4, Quat, Vec2, Vec3, Vec4};
@@ -75,15 +81,32 @@ const ACCEPTED_REQUIRED_EXTENSIONS: [&str; 3] = [
 /// Extensions that are read (every other one is ignored with a warning).
 const READ_EXTENSIONS: [&str; 2] = ["KHR_lights_punctual", "KHR_materials_emissive_strength"];
 
-/// Largest element count of an accessor without a buffer view (its elements are zeros).
-const MAX_ZERO_FILLED_ELEMENTS: usize = 1 << 24;
+/// Largest size in bytes of an accessor without a buffer view (its elements
+/// are zeros, allocated from the declared count alone).
+const MAX_ZERO_FILLED_BYTES: usize = 64 << 20;
 
 /// Largest number of triangles, and of vertices, in a loaded scene (instancing
 /// lets a small file describe more geometry than memory holds).
 const MAX_SCENE_ELEMENTS: usize = 1 << 26;
 
+/// Largest world-space coordinate of a vertex, in metres (about seven light
+/// hours): beyond it the BVH builder's surface areas, times triangle counts,
+/// overflow f32 and its partitioning fails.
+const MAX_COORDINATE: f32 = 1e12;
+
 /// Largest texture width or height accepted.
 const MAX_TEXTURE_SIDE: u32 = 16384;
+
+/// Largest number of texels in a texture (8192 × 4096; 384 MiB as linear RGB f32).
+const MAX_TEXTURE_TEXELS: u64 = 1 << 25;
+
+/// Texels an encoded image may declare per byte of its encoding: deflate
+/// expands at most about 1032:1, and a 1-bit PNG packs 8 pixels in a byte.
+/// A header declaring more is lying about the data that follows.
+const MAX_TEXELS_PER_ENCODED_BYTE: u64 = 8 * 1032;
+
+/// Texels any encoded image may declare, however small its encoding.
+const MIN_TEXEL_ALLOWANCE: u64 = 1 << 16;
 
 /// Loads a .gltf or .glb file (external buffers/images resolved relative to it).
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
@@ -416,26 +439,38 @@ fn check_camera_projections(root: &gltf::json::Root) -> Loaded<()> {
 }
 
 /// External references need a base directory; relative URIs must
-/// percent-decode to UTF-8 (the crate unwraps the decoding).
+/// percent-decode to UTF-8 (the crate unwraps the decoding); what they name
+/// must be a regular file (a device or a pipe would be read without end).
 fn check_uri(owner: &str, uri: &str, base_dir: Option<&Path>) -> Loaded<()> {
     if uri.starts_with("data:") {
         return Ok(());
     }
-    if base_dir.is_none() {
+    let Some(base_dir) = base_dir else {
         return Err(format!(
             "{owner} refers to the external file \"{uri}\", but the scene was given as bytes \
              without a directory to resolve it"
         ));
+    };
+    // the crate's resolution: file: URIs as paths, other schemes refused, the rest relative
+    let path = if let Some(path) = uri.strip_prefix("file://").or(uri.strip_prefix("file:")) {
+        PathBuf::from(path)
+    } else if uri.contains(':') {
+        return Ok(());
+    } else {
+        let decoded = percent_decode(uri).ok_or_else(|| {
+            format!("{owner}: URI \"{uri}\" does not percent-decode to valid UTF-8")
+        })?;
+        base_dir.join(decoded)
+    };
+    match std::fs::metadata(&path) {
+        Ok(metadata) if !metadata.is_file() => {
+            Err(format!("{owner}: \"{uri}\" is not a regular file"))
+        }
+        _ => Ok(()),
     }
-    if !uri.contains(':') && !percent_decodes_to_utf8(uri) {
-        return Err(format!(
-            "{owner}: URI \"{uri}\" does not percent-decode to valid UTF-8"
-        ));
-    }
-    Ok(())
 }
 
-fn percent_decodes_to_utf8(uri: &str) -> bool {
+fn percent_decode(uri: &str) -> Option<String> {
     let bytes = uri.as_bytes();
     let mut decoded = Vec::with_capacity(bytes.len());
     let mut i = 0;
@@ -454,7 +489,7 @@ fn percent_decodes_to_utf8(uri: &str) -> bool {
             }
         }
     }
-    String::from_utf8(decoded).is_ok()
+    String::from_utf8(decoded).ok()
 }
 
 fn hex_value(digit: u8) -> u8 {
@@ -581,10 +616,11 @@ fn check_accessor(accessor: &Accessor, buffers: &[BufferData]) -> Loaded<()> {
     let element_size = accessor.size();
     match accessor.view() {
         Some(view) => check_strided_range("data", &view, accessor.offset(), element_size, count)?,
-        None if count > MAX_ZERO_FILLED_ELEMENTS => {
+        None if count.saturating_mul(element_size) > MAX_ZERO_FILLED_BYTES => {
             return Err(format!(
-                "count {count} without a buffer view (at most {MAX_ZERO_FILLED_ELEMENTS} \
-                 zero elements are accepted)"
+                "count {count} of {element_size}-byte elements without a buffer view \
+                 (at most {} MiB of zeros are accepted)",
+                MAX_ZERO_FILLED_BYTES >> 20
             ));
         }
         None => {}
@@ -1008,24 +1044,63 @@ fn wrap_mode(mode: gltf::texture::WrappingMode) -> WrapMode {
 }
 
 /// Decodes a PNG or JPEG (or any format the `image` crate was built with),
-/// trusting the bytes' signature over the declared MIME type.
+/// trusting the bytes' signature over the declared MIME type. The size the
+/// header declares is checked before any texel is allocated.
 fn decode_image(encoded: &[u8], mime_type: Option<&str>) -> Loaded<DynamicImage> {
-    let mut reader = image::ImageReader::new(Cursor::new(encoded));
-    if let Some(format) = mime_type.and_then(image::ImageFormat::from_mime_type) {
-        reader.set_format(format);
-    }
-    let mut reader = reader
-        .with_guessed_format()
-        .map_err(|e| format!("cannot read: {e}"))?;
+    let (width, height) = image_reader(encoded, mime_type)?
+        .into_dimensions()
+        .map_err(|e| format!("cannot read the header: {e}"))?;
+    check_image_size(width, height, encoded.len())?;
+    let mut reader = image_reader(encoded, mime_type)?;
     let mut limits = image::Limits::default();
     limits.max_image_width = Some(MAX_TEXTURE_SIDE);
     limits.max_image_height = Some(MAX_TEXTURE_SIDE);
+    // four channels of 32-bit floats is the widest pixel the decoder produces
+    limits.max_alloc = Some(MAX_TEXTURE_TEXELS * 16);
     reader.limits(limits);
     let image = reader.decode().map_err(|e| format!("cannot decode: {e}"))?;
     if image.width() == 0 || image.height() == 0 {
         return Err("image is empty".into());
     }
     Ok(image)
+}
+
+fn image_reader<'a>(
+    encoded: &'a [u8],
+    mime_type: Option<&str>,
+) -> Loaded<image::ImageReader<Cursor<&'a [u8]>>> {
+    let mut reader = image::ImageReader::new(Cursor::new(encoded));
+    if let Some(format) = mime_type.and_then(image::ImageFormat::from_mime_type) {
+        reader.set_format(format);
+    }
+    reader
+        .with_guessed_format()
+        .map_err(|e| format!("cannot read: {e}"))
+}
+
+/// Refuses a declared image size that is empty, too large, or more than
+/// `encoded_len` bytes of any encoding can describe.
+fn check_image_size(width: u32, height: u32, encoded_len: usize) -> Loaded<()> {
+    let texels = u64::from(width) * u64::from(height);
+    if texels == 0 {
+        return Err(format!("image is empty ({width}×{height})"));
+    }
+    if width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE || texels > MAX_TEXTURE_TEXELS {
+        return Err(format!(
+            "{width}×{height} texels is above the limit ({MAX_TEXTURE_SIDE} per side, \
+             {MAX_TEXTURE_TEXELS} in all)"
+        ));
+    }
+    let allowance = (encoded_len as u64)
+        .saturating_mul(MAX_TEXELS_PER_ENCODED_BYTE)
+        .max(MIN_TEXEL_ALLOWANCE);
+    if texels > allowance {
+        return Err(format!(
+            "the header declares {width}×{height} texels, more than {encoded_len} bytes \
+             of encoded data can hold"
+        ));
+    }
+    Ok(())
 }
 
 /// Texels as linear RGB, rows top first; 8- and 16-bit values are sRGB-decoded
@@ -1416,8 +1491,12 @@ impl<'f> SceneBuilder<'f> {
             return Ok(None);
         }
         check_attribute_count(&accessor, count, "NORMAL", primitive_label)?;
-        let normals = read_accessor::<[f32; 3]>(&accessor, self.buffers)?;
-        Ok(Some(normals.into_iter().map(Vec3::from).collect()))
+        let normals: Vec<Vec3> = read_accessor::<[f32; 3]>(&accessor, self.buffers)?
+            .into_iter()
+            .map(Vec3::from)
+            .collect();
+        check_finite(&normals, |n| n.is_finite(), "NORMAL", primitive_label)?;
+        Ok(Some(normals))
     }
 
     /// `TEXCOORD_<set>` as floats (normalized integers divided out); zeros when absent.
@@ -1457,6 +1536,7 @@ impl<'f> SceneBuilder<'f> {
                 vec![Vec2::ZERO; count]
             }
         };
+        check_finite(&uvs, |uv| uv.is_finite(), &name, primitive_label)?;
         Ok(uvs)
     }
 
@@ -1516,6 +1596,13 @@ impl<'f> SceneBuilder<'f> {
             if !world.is_finite() {
                 return Err(format!(
                     "{primitive_label}: vertex {i} position {local} is not finite in world space"
+                ));
+            }
+            let extent = world.abs().max_element();
+            if extent > MAX_COORDINATE {
+                return Err(format!(
+                    "{primitive_label}: vertex {i} has a world-space coordinate of {extent:.3e} m, \
+                     beyond ±{MAX_COORDINATE:e} m"
                 ));
             }
             self.scene.positions.push(world);
@@ -1851,6 +1938,22 @@ fn check_attribute_count(
             "{primitive_label}: {attribute} has {} elements but POSITION has {vertex_count}",
             accessor.count()
         ))
+    }
+}
+
+/// Refuses an attribute with a NaN or infinite component, naming the first such vertex.
+fn check_finite<V: std::fmt::Display>(
+    values: &[V],
+    is_finite: impl Fn(&V) -> bool,
+    attribute: &str,
+    primitive_label: &str,
+) -> Loaded<()> {
+    match values.iter().position(|v| !is_finite(v)) {
+        None => Ok(()),
+        Some(i) => Err(format!(
+            "{primitive_label}: vertex {i} {attribute} {} is not finite",
+            values[i]
+        )),
     }
 }
 
