@@ -943,3 +943,26 @@ fn sparse_indices_beyond_the_count_or_unordered_are_refused() {
         "{error}"
     );
 }
+
+#[test]
+fn a_mesh_placed_too_many_times_is_refused_before_its_geometry_is_read() {
+    // 2²⁰ triangles of zero-filled positions (no buffer), placed by 70 nodes:
+    // 73 million triangles, beyond 2²⁶ and beyond what memory holds with a BVH
+    let nodes = vec![r#"{"mesh":0}"#; 70].join(",");
+    let roots = (0..70).map(|i| i.to_string()).collect::<Vec<_>>().join(",");
+    let json = format!(
+        r#"{{"asset":{{"version":"2.0"}},"scenes":[{{"nodes":[{roots}]}}],"nodes":[{nodes}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}}}}]}}],
+"accessors":[{{"componentType":5126,"count":3145728,"type":"VEC3","min":[0,0,0],"max":[0,0,0]}}]}}"#
+    );
+    let started = std::time::Instant::now();
+    let error = load_slice(json.as_bytes(), "instances.gltf", None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.starts_with("instances.gltf: the scene places 73400320 triangles, more than "),
+        "{error}"
+    );
+    // refused by counting, not after building 73 million triangles
+    assert!(started.elapsed().as_secs_f64() < 5.0, "{:?}", started.elapsed());
+}

@@ -50,7 +50,7 @@ use std::f32::consts::{FRAC_PI_2, PI};
 use std::io::Cursor;
 use std::panic::{self, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
-use std::sync::Once;
+use std::sync::{Once, OnceLock};
 
 use glam::{Affine3A, Mat3, Mat4, Quat, Vec2, Vec3, Vec4};
 use gltf::Document;
@@ -66,6 +66,7 @@ use super::{
     Triangle, WrapMode,
 };
 use crate::error::SceneError;
+use crate::film::memory_ceiling;
 
 /// What went wrong, in words; [`SceneError`] adds the file name.
 type Problem = String;
@@ -88,6 +89,34 @@ const MAX_ZERO_FILLED_BYTES: usize = 64 << 20;
 /// Largest number of triangles, and of vertices, in a loaded scene (instancing
 /// lets a small file describe more geometry than memory holds).
 const MAX_SCENE_ELEMENTS: usize = 1 << 26;
+
+/// Heap bytes a triangle takes at the peak of loading a scene and building
+/// its BVH: `lumiere bench` measures 430–450 (docs/benchmarks.md); rounded up.
+const PEAK_BYTES_PER_TRIANGLE: u64 = 512;
+
+/// The most triangles a scene may have, and why: [`MAX_SCENE_ELEMENTS`], and
+/// no more than fit with their BVH in the memory a film may take
+/// ([`memory_ceiling`]), so that instancing a mesh many times is refused with
+/// a message rather than by the allocator.
+fn scene_triangle_limit() -> (usize, String) {
+    static LIMIT: OnceLock<(usize, String)> = OnceLock::new();
+    LIMIT.get_or_init(compute_scene_triangle_limit).clone()
+}
+
+fn compute_scene_triangle_limit() -> (usize, String) {
+    let (ceiling, reason) = memory_ceiling();
+    let by_memory = ceiling / PEAK_BYTES_PER_TRIANGLE;
+    if by_memory >= MAX_SCENE_ELEMENTS as u64 {
+        return (MAX_SCENE_ELEMENTS, "the loader's limit".to_string());
+    }
+    let gib = ceiling as f64 / (1u64 << 30) as f64;
+    (
+        by_memory as usize,
+        format!(
+            "about {PEAK_BYTES_PER_TRIANGLE} bytes each with the BVH; the limit is {gib:.1} GiB, {reason}"
+        ),
+    )
+}
 
 /// Largest world-space coordinate of a vertex, in metres (about seven light
 /// hours): beyond it the BVH builder's surface areas, times triangle counts,
@@ -965,6 +994,45 @@ struct PrimitiveVertices {
     uv1: Vec<Vec2>,
 }
 
+/// Refuses, before any geometry is read, a scene whose placed meshes draw
+/// more triangles than [`scene_triangle_limit`] (a small file can place a
+/// large mesh many times).
+fn check_scene_size(document: &Document) -> Loaded<()> {
+    let mut reached = vec![false; document.nodes().len()];
+    let mut pending = scene_roots(document);
+    let mut triangles: u64 = 0;
+    while let Some(node) = pending.pop() {
+        // the walk reports nodes reached twice; here they are counted once
+        if std::mem::replace(&mut reached[node.index()], true) {
+            continue;
+        }
+        if let Some(mesh) = node.mesh() {
+            triangles += mesh.primitives().map(|p| drawn_triangles(&p)).sum::<u64>();
+        }
+        pending.extend(node.children());
+    }
+    let (limit, why) = scene_triangle_limit();
+    if triangles > limit as u64 {
+        return Err(format!(
+            "the scene places {triangles} triangles, more than {limit} ({why})"
+        ));
+    }
+    Ok(())
+}
+
+/// How many triangles a primitive draws, from its index (or vertex) count.
+fn drawn_triangles(primitive: &gltf::Primitive) -> u64 {
+    let count = primitive
+        .indices()
+        .or_else(|| primitive.get(&Semantic::Positions))
+        .map_or(0, |accessor| accessor.count() as u64);
+    match primitive.mode() {
+        Mode::Triangles => count / 3,
+        Mode::TriangleStrip | Mode::TriangleFan => count.saturating_sub(2),
+        Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip => 0,
+    }
+}
+
 fn draws_triangles(mode: Mode) -> bool {
     matches!(
         mode,
@@ -1225,6 +1293,7 @@ impl<'f> SceneBuilder<'f> {
 
     fn build(mut self) -> Loaded<Scene> {
         check_node_graph(self.document)?;
+        check_scene_size(self.document)?;
         let animations = self.document.animations().len();
         if animations > 0 {
             self.warn(format!(
@@ -1421,9 +1490,10 @@ impl<'f> SceneBuilder<'f> {
             self.warn(format!("{primitive_label}: no triangle; skipped"));
             return Ok(());
         }
-        if self.scene.triangles.len() + triangles.len() > MAX_SCENE_ELEMENTS {
+        let (max_triangles, why) = scene_triangle_limit();
+        if self.scene.triangles.len() + triangles.len() > max_triangles {
             return Err(format!(
-                "{primitive_label}: the scene would have more than {MAX_SCENE_ELEMENTS} triangles"
+                "{primitive_label}: the scene would have more than {max_triangles} triangles ({why})"
             ));
         }
         let material = self.material_id(primitive.material())?;
