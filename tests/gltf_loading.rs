@@ -964,5 +964,9 @@ fn a_mesh_placed_too_many_times_is_refused_before_its_geometry_is_read() {
         "{error}"
     );
     // refused by counting, not after building 73 million triangles
-    assert!(started.elapsed().as_secs_f64() < 5.0, "{:?}", started.elapsed());
+    assert!(
+        started.elapsed().as_secs_f64() < 5.0,
+        "{:?}",
+        started.elapsed()
+    );
 }

@@ -86,6 +86,7 @@ pub fn error_plot(rows: &[ErrorRow], path: &Path) -> Result<(), BenchError> {
         let mut chart = ChartBuilder::on(root)
             .caption("relMSE against render time", (FAMILY, 22))
             .margin(12)
+            .margin_right(28)
             .x_label_area_size(44)
             .y_label_area_size(70)
             .build_cartesian_2d(x_range.clone().log_scale(), y_range.log_scale())
@@ -95,6 +96,8 @@ pub fn error_plot(rows: &[ErrorRow], path: &Path) -> Result<(), BenchError> {
             .x_desc("seconds")
             .y_desc("relMSE")
             .label_style((FAMILY, 14))
+            .x_label_formatter(&|v| tick_label(*v))
+            .y_label_formatter(&|v| tick_label(*v))
             .draw()
             .map_err(|x| e(&x))?;
         for threshold in RELMSE_THRESHOLDS {
@@ -163,6 +166,7 @@ pub fn scaling_plot(rows: &[ScalingRow], path: &Path) -> Result<(), BenchError> 
         let mut left = ChartBuilder::on(&panels[0])
             .caption("load + build seconds", (FAMILY, 20))
             .margin(12)
+            .margin_right(28)
             .x_label_area_size(44)
             .y_label_area_size(60)
             .build_cartesian_2d(x_range.clone().log_scale(), seconds_range.log_scale())
@@ -170,6 +174,8 @@ pub fn scaling_plot(rows: &[ScalingRow], path: &Path) -> Result<(), BenchError> 
         left.configure_mesh()
             .x_desc("triangles")
             .label_style((FAMILY, 13))
+            .x_label_formatter(&|v| tick_label(*v))
+            .y_label_formatter(&|v| tick_label(*v))
             .draw()
             .map_err(|x| e(&x))?;
         for (axis, name, c) in axes {
@@ -192,6 +198,7 @@ pub fn scaling_plot(rows: &[ScalingRow], path: &Path) -> Result<(), BenchError> 
         let mut right = ChartBuilder::on(&panels[1])
             .caption("Mrays/s", (FAMILY, 20))
             .margin(12)
+            .margin_right(28)
             .x_label_area_size(44)
             .y_label_area_size(50)
             .build_cartesian_2d(x_range.clone().log_scale(), 0.0..mrays_max)
@@ -200,6 +207,8 @@ pub fn scaling_plot(rows: &[ScalingRow], path: &Path) -> Result<(), BenchError> 
             .configure_mesh()
             .x_desc("triangles")
             .label_style((FAMILY, 13))
+            .x_label_formatter(&|v| tick_label(*v))
+            .y_label_formatter(&|v| tick_label(*v))
             .draw()
             .map_err(|x| e(&x))?;
         for (axis, _, c) in axes {
@@ -213,4 +222,32 @@ pub fn scaling_plot(rows: &[ScalingRow], path: &Path) -> Result<(), BenchError> 
         }
         Ok(())
     })
+}
+
+/// A compact tick label: plain decimals from 10⁻³ to 10⁵ ("0.01", "250"),
+/// powers of ten outside ("1e6"), never a trailing ".0".
+fn tick_label(value: f64) -> String {
+    let magnitude = value.abs();
+    if value == 0.0 || (1e-3..1e5).contains(&magnitude) {
+        // round away the binary noise of log-scale ticks
+        format!("{}", (value * 1e6).round() / 1e6)
+    } else {
+        format!("{value:e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tick_label;
+
+    #[test]
+    fn tick_labels_are_compact() {
+        assert_eq!(tick_label(0.0), "0");
+        assert_eq!(tick_label(0.001), "0.001");
+        assert_eq!(tick_label(1.0), "1");
+        assert_eq!(tick_label(2.5), "2.5");
+        assert_eq!(tick_label(10000.000000001), "10000");
+        assert_eq!(tick_label(1e6), "1e6");
+        assert_eq!(tick_label(1e-4), "1e-4");
+    }
 }
