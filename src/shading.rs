@@ -8,7 +8,7 @@
 use glam::{Vec2, Vec3};
 
 use crate::brdf::Brdf;
-use crate::geometry::{Frame, Ray, barycentric_point_error, offset_ray_origin};
+use crate::geometry::{Frame, Ray, interpolate_point, offset_ray_origin};
 use crate::scene::{BrdfModel, Material, Scene, TextureRef};
 use crate::settings::{BrdfOverride, RenderSettings};
 
@@ -37,7 +37,7 @@ impl SurfacePoint {
             scene.positions[i1],
             scene.positions[i2],
         );
-        let p = b.x * p0 + b.y * p1 + b.z * p2;
+        let (p, p_error) = interpolate_point(b, p0, p1, p2);
         let ng = (p1 - p0).cross(p2 - p0).normalize_or(Vec3::Z);
         let ns = if tri.smooth {
             let n = b.x * scene.normals[i0] + b.y * scene.normals[i1] + b.z * scene.normals[i2];
@@ -49,7 +49,7 @@ impl SurfacePoint {
         let interpolate = |uv: &[Vec2]| b.x * uv[i0] + b.y * uv[i1] + b.z * uv[i2];
         Self {
             p,
-            p_error: barycentric_point_error(b, p0, p1, p2),
+            p_error,
             ng,
             ns,
             uv: [interpolate(&scene.uv0), interpolate(&scene.uv1)],

@@ -519,11 +519,13 @@ fn setup(case: Case, effort: Effort) -> Setup {
     match case {
         Case::TinyScale => furnace(1e-4, Vec3::ZERO),
         Case::HugeScale => furnace(1e5, Vec3::ZERO),
-        // f32 positions 1e5 m out are 7.8 mm apart: MIS weights computed from
-        // them lose about 1 % (measured: area sampling alone and BRDF
-        // sampling alone are within the noise)
+        // f32 positions 1e5 m out are 7.8 mm apart and rays leave the surface
+        // about 2 cm out: the MIS weights of a light point, measured from the
+        // hit point, and of the direction traced from the offset origin no
+        // longer sum to one, which loses 0.5 % (measured: area sampling
+        // alone and BRDF sampling alone are within the noise)
         Case::FarFromOrigin => Setup {
-            tolerance: 0.02,
+            tolerance: 0.015,
             ..furnace(10.0, Vec3::new(1e5, -1e5, 1e5))
         },
         Case::Slivers => {
@@ -771,8 +773,9 @@ fn setups(case: Case, effort: Effort) -> Vec<Setup> {
     match case {
         Case::TinyScale => list.push(point(1e-4, Vec3::ZERO)),
         Case::HugeScale => list.push(point(1e5, Vec3::ZERO)),
+        // 1/d² from f32 positions 1e5 m out: 10⁻⁴ low
         Case::FarFromOrigin => list.push(Setup {
-            tolerance: 0.02,
+            tolerance: 1e-3,
             ..point(10.0, Vec3::new(1e5, -1e5, 1e5))
         }),
         _ => {}
