@@ -20,7 +20,8 @@
 
 use crate::metrics::ImageError;
 use crate::settings::{
-    IndirectSampling, LightSampling, LightSelection, MisHeuristic, RenderSettings, Sampler,
+    Adaptive, IndirectSampling, LightSampling, LightSelection, MisHeuristic, RenderSettings,
+    Sampler,
 };
 
 /// The choices of a [`RenderSettings`] that make an estimator, not the image it
@@ -34,6 +35,7 @@ pub struct EstimatorKey {
     pub indirect_samples: u32,
     pub light_selection: LightSelection,
     pub sampler: Sampler,
+    pub adaptive: Option<Adaptive>,
 }
 
 impl EstimatorKey {
@@ -46,6 +48,7 @@ impl EstimatorKey {
             indirect_samples: settings.indirect_samples,
             light_selection: settings.light_selection,
             sampler: settings.sampler,
+            adaptive: settings.adaptive,
         }
     }
 
@@ -58,6 +61,7 @@ impl EstimatorKey {
         settings.indirect_samples = self.indirect_samples;
         settings.light_selection = self.light_selection;
         settings.sampler = self.sampler;
+        settings.adaptive = self.adaptive;
     }
 
     /// Short name: light sampling · indirect sampling · sampler, then what
@@ -82,6 +86,9 @@ impl EstimatorKey {
         }
         if self.light_selection != defaults.light_selection {
             parts.push(format!("{} pick", self.light_selection.label()));
+        }
+        if let Some(adaptive) = &self.adaptive {
+            parts.push(format!("adaptive {}%", 100.0 * adaptive.threshold));
         }
         parts.join("·")
     }

@@ -13,6 +13,11 @@
 //! zero while the others keep theirs. Each term also records the pass indices
 //! it received (a hidden term skips passes), so that a pixel's samples can be
 //! traced again exactly (`probe`).
+//!
+//! With adaptive sampling (`crate::adaptive`) a pass may leave out some
+//! pixels of a term; the term then keeps a count per pixel. A pixel that
+//! misses a pass of its term never gets another, so its N samples are those
+//! of the term's first N passes.
 
 use std::ops::Range;
 
@@ -105,8 +110,10 @@ pub struct TermBuffer {
     /// Σ radiance per pixel.
     pub sum: Vec<DVec3>,
     pub luminance: Vec<Welford>,
-    /// Samples per pixel accumulated so far.
+    /// Passes accumulated so far: the samples of every pixel that none left out.
     pub samples: u32,
+    /// Samples of each pixel, once a pass has left some pixel out (adaptive sampling).
+    pixel_samples: Option<Vec<u32>>,
     /// The pass indices accumulated, in order, as runs of consecutive passes.
     passes: Vec<Range<u32>>,
 }
@@ -117,25 +124,65 @@ impl TermBuffer {
             sum: vec![DVec3::ZERO; pixels],
             luminance: vec![Welford::default(); pixels],
             samples: 0,
+            pixel_samples: None,
             passes: Vec::new(),
         }
     }
 
     /// Adds one sample per pixel, from pass `pass`: term `term` of each pixel's `radiance`.
     fn add_pass(&mut self, term: usize, pass: u32, radiance: &[[Vec3; Term::COUNT]]) {
-        let n = (self.samples + 1) as f64;
+        if let Some(counts) = &mut self.pixel_samples {
+            // some pixels were left out before: each counts its own
+            self.sum
+                .par_iter_mut()
+                .zip(self.luminance.par_iter_mut())
+                .zip(counts.par_iter_mut())
+                .zip(radiance.par_iter())
+                .for_each(|(((sum, stats), count), sample)| {
+                    *count += 1;
+                    accumulate(sum, stats, *count, sample[term]);
+                });
+        } else {
+            let n = self.samples + 1;
+            self.sum
+                .par_iter_mut()
+                .zip(self.luminance.par_iter_mut())
+                .zip(radiance.par_iter())
+                .for_each(|((sum, stats), sample)| accumulate(sum, stats, n, sample[term]));
+        }
+        self.record_pass(pass);
+    }
+
+    /// Adds pass `pass` to the pixels where `sampled(i)` is true; the others
+    /// keep their samples (and are never sampled again by this term, by the
+    /// callers' rule: see [`TermBuffer::is_complete`]).
+    fn add_pass_where(
+        &mut self,
+        term: usize,
+        pass: u32,
+        radiance: &[[Vec3; Term::COUNT]],
+        sampled: impl Fn(usize) -> bool + Sync,
+    ) {
+        let samples = self.samples;
+        let counts = self
+            .pixel_samples
+            .get_or_insert_with(|| vec![samples; radiance.len()]);
         self.sum
             .par_iter_mut()
             .zip(self.luminance.par_iter_mut())
+            .zip(counts.par_iter_mut())
             .zip(radiance.par_iter())
-            .for_each(|((sum, stats), sample)| {
-                let l = sample[term];
-                *sum += l.as_dvec3();
-                let y = luminance(l) as f64;
-                let delta = y - stats.mean;
-                stats.mean += delta / n;
-                stats.m2 += delta * (y - stats.mean);
+            .enumerate()
+            .for_each(|(i, (((sum, stats), count), sample))| {
+                if sampled(i) {
+                    *count += 1;
+                    accumulate(sum, stats, *count, sample[term]);
+                }
             });
+        self.record_pass(pass);
+    }
+
+    fn record_pass(&mut self, pass: u32) {
         self.samples += 1;
         match self.passes.last_mut() {
             Some(run) if run.end == pass => run.end += 1,
@@ -148,23 +195,50 @@ impl TermBuffer {
         self.passes.iter().flat_map(Clone::clone)
     }
 
+    /// Samples of pixel `i`.
+    pub fn pixel_samples(&self, i: usize) -> u32 {
+        self.pixel_samples.as_ref().map_or(self.samples, |c| c[i])
+    }
+
+    /// Whether pixel `i` has received every pass of this term (a pixel that
+    /// missed one is done for good: its samples stay those of the first passes).
+    pub fn is_complete(&self, i: usize) -> bool {
+        self.pixel_samples(i) == self.samples
+    }
+
+    /// Whether some pixel has fewer samples than others.
+    pub fn is_adaptive(&self) -> bool {
+        self.pixel_samples.is_some()
+    }
+
     /// Mean radiance of pixel `i` (zero before any sample).
     pub fn mean(&self, i: usize) -> DVec3 {
-        if self.samples == 0 {
-            DVec3::ZERO
-        } else {
-            self.sum[i] / self.samples as f64
+        match self.pixel_samples(i) {
+            0 => DVec3::ZERO,
+            n => self.sum[i] / n as f64,
         }
     }
 
     /// Standard error of pixel `i`'s mean luminance (zero below two samples).
     pub fn standard_error(&self, i: usize) -> f64 {
-        if self.samples < 2 {
+        let n = self.pixel_samples(i);
+        if n < 2 {
             return 0.0;
         }
-        let n = self.samples as f64;
+        let n = n as f64;
         (self.luminance[i].m2 / (n - 1.0) / n).sqrt()
     }
+}
+
+/// Adds sample `radiance`, the `n`-th of its pixel, to the running sum and
+/// Welford's statistics of its luminance.
+#[inline]
+fn accumulate(sum: &mut DVec3, stats: &mut Welford, n: u32, radiance: Vec3) {
+    *sum += radiance.as_dvec3();
+    let y = luminance(radiance) as f64;
+    let delta = y - stats.mean;
+    stats.mean += delta / n as f64;
+    stats.m2 += delta * (y - stats.mean);
 }
 
 /// Per-term accumulators of an image.
@@ -232,6 +306,24 @@ impl Film {
         for term in terms.iter() {
             let buffer = self.terms[term.index()].get_or_insert_with(|| TermBuffer::new(pixels));
             buffer.add_pass(term.index(), pass, radiance);
+        }
+    }
+
+    /// [`Film::add_pass`] in which pixel i receives term t only where
+    /// `sampled[i]` contains t (adaptive sampling).
+    pub fn add_pass_where(
+        &mut self,
+        terms: TermSet,
+        pass: u32,
+        radiance: &[[Vec3; Term::COUNT]],
+        sampled: &[TermSet],
+    ) {
+        let pixels = self.pixel_count();
+        assert_eq!(radiance.len(), pixels, "pass size differs from the film's");
+        assert_eq!(sampled.len(), pixels, "mask size differs from the film's");
+        for term in terms.iter() {
+            let buffer = self.terms[term.index()].get_or_insert_with(|| TermBuffer::new(pixels));
+            buffer.add_pass_where(term.index(), pass, radiance, |i| sampled[i].contains(term));
         }
     }
 

@@ -117,6 +117,8 @@ pub struct SkippedWork {
     pub continuations: u64,
     /// Paths ended by Russian roulette.
     pub roulette: u64,
+    /// Samples of a pixel's term not taken: adaptive sampling had stopped it.
+    pub converged: u64,
 }
 
 impl SkippedWork {
@@ -131,6 +133,7 @@ impl SkippedWork {
         self.gathered += other.gathered;
         self.continuations += other.continuations;
         self.roulette += other.roulette;
+        self.converged += other.converged;
     }
 
     /// One line for summaries: the non-zero counts.
@@ -141,6 +144,10 @@ impl SkippedWork {
             (self.gathered, "gathered directions (no light to hit)"),
             (self.continuations, "continuations (no term needs them)"),
             (self.roulette, "paths ended by Russian roulette"),
+            (
+                self.converged,
+                "term samples of converged pixels (adaptive)",
+            ),
         ]
         .iter()
         .filter(|(n, _)| *n > 0)
@@ -260,8 +267,25 @@ impl RenderContext {
         stream: &SampleStream,
         counts: &mut RayCounts,
     ) -> TermRadiance {
+        self.sample_pixel_terms(x, y, stream, counts, self.settings.terms)
+    }
+
+    /// [`RenderContext::sample_pixel`] for the terms of `terms` only (a
+    /// subset of the settings' terms): the others come out zero and their
+    /// work is skipped. A term's value does not depend on which others are
+    /// computed: each random dimension belongs to one vertex and one use.
+    pub fn sample_pixel_terms(
+        &self,
+        x: u32,
+        y: u32,
+        stream: &SampleStream,
+        counts: &mut RayCounts,
+        terms: TermSet,
+    ) -> TermRadiance {
         let ray = self.camera.generate(x, y, stream.uniform2(dim::PIXEL));
-        let radiance = Walk::new(self, counts, None).camera_path(ray, stream);
+        let mut walk = Walk::new(self, counts, None);
+        walk.restrict_terms(terms);
+        let radiance = walk.camera_path(ray, stream);
         guard_sample(radiance, counts)
     }
 
@@ -379,6 +403,20 @@ impl<'a> Walk<'a> {
                 .min(settings.max_bounces),
             can_hit_lights: context.lights.has_hittable_lights(),
         }
+    }
+
+    /// Computes only the terms of `terms` (within the settings' terms).
+    fn restrict_terms(&mut self, terms: TermSet) {
+        let settings = &self.context.settings;
+        self.terms = TermSet::ALL
+            .iter()
+            .filter(|&t| terms.contains(t) && settings.terms.contains(t))
+            .fold(TermSet::NONE, |set, t| set.with(t, true));
+        self.last_reflection = self
+            .terms
+            .max_reflections()
+            .unwrap_or(0)
+            .min(settings.max_bounces);
     }
 
     /// The whole sample: the camera segment, then the first vertex and its
@@ -519,7 +557,13 @@ impl<'a> Walk<'a> {
             return;
         }
         if !self.terms.contains_reflections(vertex.index + 1) {
-            self.counts.skipped.direct_lighting += 1;
+            // counted when the settings leave the term out (not when adaptive sampling does)
+            let settings_off = !self
+                .context
+                .settings
+                .terms
+                .contains_reflections(vertex.index + 1);
+            self.counts.skipped.direct_lighting += u64::from(settings_off);
             return;
         }
         let settings = &self.context.settings;

@@ -23,6 +23,7 @@
 //! ```
 
 pub mod accel;
+pub mod adaptive;
 #[cfg(feature = "gui")]
 pub mod app;
 pub mod bench;

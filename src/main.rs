@@ -26,8 +26,8 @@ use lumiere::render::{Budget, RenderStats, render};
 use lumiere::scene::Camera;
 use lumiere::scene::builtin;
 use lumiere::settings::{
-    DisplaySettings, IndirectSampling, LightSampling, LightSelection, MAX_SAMPLES_PER_VERTEX,
-    MisHeuristic, Sampler, Tonemap,
+    Adaptive, DisplaySettings, IndirectSampling, LightSampling, LightSelection,
+    MAX_SAMPLES_PER_VERTEX, MisHeuristic, Sampler, Tonemap,
 };
 use lumiere::sidecar::Sidecar;
 use lumiere::strip::{RowSweep, SampleCounts, StripImage, StripLayout, StripRow, render_strip};
@@ -177,6 +177,12 @@ struct SceneOptions {
     /// Random numbers: independent, stratified (jittered) or sobol (Owen-scrambled).
     #[arg(long, default_value = "independent")]
     sampler: Sampler,
+    /// Adaptive sampling: stop sampling a pixel's term once its standard error is below this fraction of the pixel's value (e.g. 0.01; default: off, every pixel gets every sample)
+    #[arg(long, value_parser = parse_threshold)]
+    adaptive: Option<f32>,
+    /// Adaptive sampling: samples every pixel gets before its error is judged.
+    #[arg(long, default_value_t = Adaptive::default().min_samples, requires = "adaptive", value_parser = clap::value_parser!(u32).range(Adaptive::MIN_SAMPLES as i64..=1_000_000))]
+    adaptive_min_spp: u32,
     /// Exposure in stops (PNG and display; the EXR stays linear).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_exposure)]
     exposure: f32,
@@ -326,6 +332,17 @@ fn parse_exponent(s: &str) -> Result<f32, String> {
     }
 }
 
+fn parse_threshold(s: &str) -> Result<f32, String> {
+    let v: f32 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
+    if v.is_finite() && v > 0.0 && v <= 1.0 {
+        Ok(v)
+    } else {
+        Err(format!(
+            "adaptive threshold {s} must be a fraction within (0, 1] (0.01: stop at 1% standard error)"
+        ))
+    }
+}
+
 fn parse_exposure(s: &str) -> Result<f32, String> {
     let v: f32 = s
         .parse()
@@ -356,6 +373,10 @@ impl SceneOptions {
             indirect_samples: self.indirect_samples,
             light_selection: self.light_selection,
             sampler: self.sampler,
+            adaptive: self.adaptive.map(|threshold| Adaptive {
+                threshold,
+                min_samples: self.adaptive_min_spp,
+            }),
             ..RenderSettings::default()
         }
     }
@@ -478,6 +499,13 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
     )
     .map_err(|e| runtime(e.into()))?;
     println!("{}", summary(&stats));
+    if settings.adaptive.is_some() {
+        let traced = stats.rays.camera as f64 / film.pixel_count() as f64;
+        println!(
+            "adaptive: {traced:.1} samples traced per pixel on average, of {} passes",
+            stats.samples_per_pixel
+        );
+    }
     println!("skipped: {}", stats.rays.skipped.describe());
     Ok(())
 }

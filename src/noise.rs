@@ -384,9 +384,18 @@ pub fn noise_values(
             })
             .collect(),
         DisplayMode::SampleCount => {
+            // per pixel, the fewest samples of a shown term (adaptive sampling varies them)
             let terms = view.source.terms(visible);
-            let spp = terms.iter().map(|t| film.samples(t)).min().unwrap_or(0);
-            vec![spp as f32; pixels]
+            (0..pixels)
+                .map(|i| {
+                    let spp = terms
+                        .iter()
+                        .map(|t| film.term(t).map_or(0, |b| b.pixel_samples(i)))
+                        .min()
+                        .unwrap_or(0);
+                    spp as f32
+                })
+                .collect()
         }
         DisplayMode::Difference => {
             let reference = reference.ok_or(NoiseViewError::NoReference)?;

@@ -154,10 +154,15 @@ impl FilmPixel {
             .iter()
             .filter_map(|term| {
                 let buffer = film.term(term).filter(|b| b.samples > 0)?;
+                // a pixel's samples are those of the term's first passes (see `film`)
+                let samples = buffer.pixel_samples(index);
                 Some(FilmPixelTerm {
                     term,
-                    passes: buffer.passes().take(max_samples as usize).collect(),
-                    samples: buffer.samples,
+                    passes: buffer
+                        .passes()
+                        .take(samples.min(max_samples) as usize)
+                        .collect(),
+                    samples,
                     mean: buffer.mean(index),
                     standard_error: buffer.standard_error(index),
                 })

@@ -216,6 +216,8 @@ struct Current {
     elapsed: Duration,
     rays: RayCounts,
     pixel_samples: u64,
+    /// Adaptive sampling has stopped every pixel: the last pass traced nothing.
+    converged: bool,
 }
 
 impl Current {
@@ -229,7 +231,8 @@ impl Current {
             .map(|t| film.samples(t))
             .min()
             .unwrap_or(0);
-        !self.needs_preview && (request.paused || request.stop_at_spp.is_some_and(|n| spp >= n))
+        !self.needs_preview
+            && (request.paused || self.converged || request.stop_at_spp.is_some_and(|n| spp >= n))
     }
 }
 
@@ -316,11 +319,13 @@ impl Worker {
             current.elapsed = Duration::ZERO;
             current.rays = RayCounts::default();
             current.pixel_samples = 0;
+            current.converged = false;
             current.request = request;
             self.restarts += 1;
         } else {
             // visible terms, pause or stop changed: no restart
             current.context.settings.terms = settings.terms;
+            current.converged = false;
             current.request = request;
             self.publish_full();
         }
@@ -343,6 +348,7 @@ impl Worker {
             elapsed: Duration::ZERO,
             rays: RayCounts::default(),
             pixel_samples: 0,
+            converged: false,
         });
     }
 
@@ -369,12 +375,13 @@ impl Worker {
             &mut self.buffer,
             &self.shared.cancel,
         );
-        let pixels = film.pixel_count() as u64;
         drop(film);
         current.elapsed += start.elapsed();
         if let Some(counts) = pass {
             current.rays.add(&counts);
-            current.pixel_samples += pixels;
+            // one camera ray per sample traced (adaptive sampling traces fewer than the pixels)
+            current.pixel_samples += counts.camera;
+            current.converged = counts.camera == 0;
             current.next_sample += 1;
             self.publish_full();
         }

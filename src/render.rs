@@ -3,7 +3,9 @@
 //! Pass s draws sample s of every pixel; the sample's random numbers come from
 //! (sampler, seed, pixel, s) only, so the film is bit-identical whatever the
 //! number of threads or the order in which tiles finish. Tiles are bands of
-//! rows, handed to rayon's work-stealing pool.
+//! rows, handed to rayon's work-stealing pool. With adaptive sampling the
+//! film decides, before each pass, which terms each pixel still needs
+//! (`adaptive`); that too depends on the film alone.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -11,6 +13,7 @@ use std::time::{Duration, Instant};
 use glam::Vec3;
 use rayon::prelude::*;
 
+use crate::adaptive::terms_to_sample;
 use crate::film::Film;
 use crate::integrator::{RayCounts, RenderContext, TermRadiance};
 use crate::sampling::SampleStream;
@@ -74,9 +77,16 @@ pub fn render_pass_cancellable(
     cancel: &AtomicBool,
 ) -> Option<RayCounts> {
     let width = film.width as usize;
+    let terms = context.settings.terms;
     buffer
         .samples
         .resize(film.pixel_count(), [Vec3::ZERO; Term::COUNT]);
+    // adaptive sampling: the terms each pixel still needs (None: all, everywhere)
+    let needed = context
+        .settings
+        .adaptive
+        .as_ref()
+        .and_then(|adaptive| terms_to_sample(film, terms, adaptive));
     let counts = buffer
         .samples
         .par_chunks_mut(width * TILE_ROWS)
@@ -89,8 +99,15 @@ pub fn render_pass_cancellable(
             for (offset, sample) in pixels.iter_mut().enumerate() {
                 let index = tile * width * TILE_ROWS + offset;
                 let (x, y) = ((index % width) as u32, (index / width) as u32);
+                let pixel_terms = needed.as_ref().map_or(terms, |n| n[index]);
+                let skipped = terms.iter().filter(|&t| !pixel_terms.contains(t)).count();
+                counts.skipped.converged += skipped as u64;
+                if pixel_terms.is_empty() {
+                    *sample = [Vec3::ZERO; Term::COUNT];
+                    continue;
+                }
                 let stream = sample_stream(&context.settings, index as u64, pass);
-                *sample = context.sample_pixel(x, y, &stream, &mut counts);
+                *sample = context.sample_pixel_terms(x, y, &stream, &mut counts, pixel_terms);
             }
             counts
         })
@@ -101,7 +118,10 @@ pub fn render_pass_cancellable(
     if cancel.load(Ordering::Relaxed) {
         return None;
     }
-    film.add_pass(context.settings.terms, pass, &buffer.samples);
+    match &needed {
+        Some(needed) => film.add_pass_where(terms, pass, &buffer.samples, needed),
+        None => film.add_pass(terms, pass, &buffer.samples),
+    }
     Some(counts)
 }
 

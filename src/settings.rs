@@ -344,6 +344,69 @@ impl Sampler {
     }
 }
 
+/// Adaptive sampling: a pixel's term stops receiving samples once its
+/// standard error is a small enough fraction of the pixel's value.
+///
+/// Off by default (`RenderSettings::adaptive` is `None`): the noise lessons
+/// need every pixel to get the same samples.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct Adaptive {
+    /// A term of a pixel stops once its standard error (of the luminance) is
+    /// at most this fraction of the pixel's luminance Y, summed over the
+    /// rendered terms; of √(Y² + 10⁻²) to be exact, which is Y on bright
+    /// pixels and keeps dark ones from taking every sample (`crate::adaptive`).
+    pub threshold: f32,
+    /// Samples every pixel receives before its error is judged.
+    pub min_samples: u32,
+}
+
+impl Default for Adaptive {
+    fn default() -> Self {
+        Self {
+            threshold: 0.01,
+            // fewer samples often underestimate the error of a pixel (a
+            // bright bounce not yet drawn): it stops early and keeps a large
+            // error (measured in docs/benchmarks.md)
+            min_samples: 128,
+        }
+    }
+}
+
+// Settings are compared and hashed as keys (`convergence::EstimatorKey`);
+// a validated threshold is never NaN, so equality is an equivalence.
+impl Eq for Adaptive {}
+
+impl std::hash::Hash for Adaptive {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        self.threshold.to_bits().hash(state);
+        self.min_samples.hash(state);
+    }
+}
+
+impl Adaptive {
+    /// The smallest `min_samples` accepted: a standard error from fewer samples is meaningless.
+    pub const MIN_SAMPLES: u32 = 4;
+
+    /// Checks the values a file or a caller could get wrong.
+    pub fn validate(&self) -> Result<(), String> {
+        if !(self.threshold.is_finite() && self.threshold > 0.0 && self.threshold <= 1.0) {
+            return Err(format!(
+                "adaptive threshold {} must be a fraction within (0, 1] (0.01: stop at 1% standard error)",
+                self.threshold
+            ));
+        }
+        if self.min_samples < Self::MIN_SAMPLES {
+            return Err(format!(
+                "adaptive minimum of {} samples per pixel must be at least {} (a standard error needs several samples)",
+                self.min_samples,
+                Self::MIN_SAMPLES
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// The curve that maps exposed radiance to display values (display and PNG only).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Tonemap {
@@ -451,6 +514,8 @@ pub struct RenderSettings {
     pub indirect_samples: u32,
     pub light_selection: LightSelection,
     pub sampler: Sampler,
+    /// Adaptive sampling, if on; `None` (the default): every pixel gets every pass.
+    pub adaptive: Option<Adaptive>,
 }
 
 /// Most light or indirect samples per vertex a render accepts.
@@ -476,6 +541,7 @@ impl Default for RenderSettings {
             indirect_samples: 1,
             light_selection: LightSelection::default(),
             sampler: Sampler::default(),
+            adaptive: None,
         }
     }
 }
@@ -513,6 +579,9 @@ impl RenderSettings {
         }
         if self.max_bounces == 0 {
             return Err("max bounces must be at least 1".into());
+        }
+        if let Some(adaptive) = &self.adaptive {
+            adaptive.validate()?;
         }
         for (name, count) in [
             ("light samples", self.light_samples),

@@ -10,7 +10,7 @@ use super::{LumiereApp, display, interact, reference, split};
 use crate::noise::{DisplayMode, NoiseSource, Scale};
 use crate::progressive::Snapshot;
 use crate::settings::{
-    BrdfOverride, IndirectSampling, LightMode, LightSampling, LightSelection,
+    Adaptive, BrdfOverride, IndirectSampling, LightMode, LightSampling, LightSelection,
     MAX_SAMPLES_PER_VERTEX, MisHeuristic, Sampler, Term, Tonemap,
 };
 
@@ -300,7 +300,44 @@ fn sampling_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 }
             });
             combo(ui, "sampler", &mut settings.sampler, &Sampler::ALL, sampler_hint);
+            adaptive_ui(ui, &mut settings.adaptive);
         });
+}
+
+/// Adaptive sampling: a checkbox, then the threshold (in percent) and the
+/// samples every pixel gets first.
+fn adaptive_ui(ui: &mut egui::Ui, adaptive: &mut Option<Adaptive>) {
+    ui.horizontal(|ui| {
+        let mut on = adaptive.is_some();
+        ui.checkbox(&mut on, "adaptive").on_hover_text(
+            "Stop sampling a pixel's term once its standard error falls below a fraction \
+             of the pixel's value. Leave it off to compare noise: every pixel then gets \
+             the same samples.",
+        );
+        if on != adaptive.is_some() {
+            *adaptive = on.then(Adaptive::default);
+        }
+        if let Some(adaptive) = adaptive {
+            let mut percent = adaptive.threshold * 100.0;
+            let threshold = ui
+                .add(
+                    egui::DragValue::new(&mut percent)
+                        .range(0.01..=100.0)
+                        .speed(0.05)
+                        .suffix(" %"),
+                )
+                .on_hover_text("Standard error at which a pixel's term stops, relative to the pixel's luminance");
+            if threshold.changed() {
+                adaptive.threshold = percent / 100.0;
+            }
+            ui.add(
+                egui::DragValue::new(&mut adaptive.min_samples)
+                    .range(Adaptive::MIN_SAMPLES..=65536)
+                    .prefix("min spp "),
+            )
+            .on_hover_text("Samples every pixel gets before its error is judged");
+        }
+    });
 }
 
 /// A combo box over a closed set, with a hint per value.

@@ -183,6 +183,15 @@ fn fnv1a(text: &str) -> u64 {
     })
 }
 
+/// The CSV's `estimator` of a curve: `strategy/sampler`, then `/adaptive T`
+/// with adaptive sampling (whose spp column counts passes).
+fn curve_label(estimator: &Estimator, settings: &RenderSettings) -> String {
+    match &settings.adaptive {
+        Some(adaptive) => format!("{}/adaptive {}", estimator.label(), adaptive.threshold),
+        None => estimator.label(),
+    }
+}
+
 /// The cached reference's file name for `scene`, `settings` and `spp`.
 pub fn reference_file_name(scene: &str, settings: &RenderSettings, spp: u32) -> String {
     let radiance = serde_json::to_string(&radiance_settings(settings)).unwrap_or_default();
@@ -295,7 +304,7 @@ pub fn measure_curves(
                 .expect("film and reference have the same size");
             rows.push(ErrorRow {
                 renderer: LUMIERE.into(),
-                estimator: estimator.label(),
+                estimator: curve_label(estimator, &settings),
                 spp,
                 seconds,
                 rmse: error.rmse,
