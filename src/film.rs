@@ -30,8 +30,10 @@ use crate::settings::{Term, TermSet};
 // ---------------------------------------------------------------------------
 // Memory
 
-/// Film bytes per pixel for one term: Σ radiance (3 × f64) and Welford's mean and M2 (2 × f64).
-pub const TERM_BYTES_PER_PIXEL: u64 = 3 * 8 + 2 * 8;
+/// Film bytes per pixel for one term: Σ radiance (3 × f64), Welford's mean
+/// and M2 (2 × f64), and its sample count once adaptive sampling leaves
+/// pixels out (u32).
+pub const TERM_BYTES_PER_PIXEL: u64 = 3 * 8 + 2 * 8 + 4;
 
 /// Bytes per pixel of one pass's samples on their way to the film: an RGB
 /// f32 triple for each of the four terms, whichever are kept.
@@ -352,14 +354,14 @@ mod tests {
 
     #[test]
     fn film_memory_is_estimated_per_term_and_capped() {
-        assert_eq!(bytes_per_pixel(TermSet::ALL), 4 * 40 + 48);
-        assert_eq!(bytes_per_pixel(TermSet::only(Term::L1)), 40 + 48);
+        assert_eq!(bytes_per_pixel(TermSet::ALL), 4 * 44 + 48);
+        assert_eq!(bytes_per_pixel(TermSet::only(Term::L1)), 44 + 48);
         assert_eq!(mem_total_bytes("MemTotal:       1024 kB\n"), Some(1 << 20));
         assert_eq!(mem_total_bytes("nothing"), None);
         let error = Film::try_new(16384, 16384, TermSet::ALL).unwrap_err();
-        assert_eq!(error.bytes, 16384 * 16384 * 208);
+        assert_eq!(error.bytes, 16384 * 16384 * 224);
         assert!(
-            error.to_string().contains("needs about 52.0 GiB"),
+            error.to_string().contains("needs about 56.0 GiB"),
             "{error}"
         );
         assert!(Film::try_new(640, 480, TermSet::ALL).is_ok());

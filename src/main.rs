@@ -660,7 +660,7 @@ fn run_bench(args: &BenchArgs) -> Result<(), Failure> {
         error: ErrorBench {
             scene: args.scene.clone(),
             settings: settings.clone(),
-            estimators: Estimator::all_pairs(&strategies, &samplers),
+            estimators: Estimator::all_pairs(&strategies, &samplers, settings.adaptive),
             max_spp: args.max_spp,
             reference_spp: args.reference_spp,
             reference: args.reference.clone(),

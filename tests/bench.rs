@@ -50,6 +50,7 @@ fn tiny_config() -> BenchConfig {
             estimators: Estimator::all_pairs(
                 &[LightSampling::Mis, LightSampling::Area],
                 &[Sampler::Independent],
+                None,
             ),
             max_spp: 16,
             reference_spp: 256,
@@ -365,4 +366,33 @@ fn the_replay_traces_the_renderers_rays_and_finds_the_same_hits() {
             segments.len()
         );
     }
+}
+
+#[test]
+fn with_adaptive_sampling_every_curve_is_measured_uniform_and_adaptive() {
+    use lumiere::settings::Adaptive;
+    let adaptive = Adaptive {
+        threshold: 0.01,
+        min_samples: 128,
+    };
+    let estimators = Estimator::all_pairs(
+        &[LightSampling::Mis],
+        &[Sampler::Independent, Sampler::Stratified],
+        Some(adaptive),
+    );
+    let labels: Vec<String> = estimators.iter().map(Estimator::label).collect();
+    assert_eq!(
+        labels,
+        [
+            "mis/independent",
+            "mis/independent/adaptive 0.01",
+            "mis/stratified",
+            "mis/stratified/adaptive 0.01"
+        ]
+    );
+    assert_eq!(estimators[1].adaptive, Some(adaptive));
+    assert_eq!(
+        Estimator::all_pairs(&[LightSampling::Mis], &[Sampler::Independent], None).len(),
+        1
+    );
 }

@@ -318,8 +318,8 @@ fn cli_refuses_a_film_too_large_for_memory_naming_its_size() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "stderr: {stderr}");
     assert!(
-        stderr.contains("a 16384×16384 image with 4 term(s) needs about 52.0 GiB of film")
-            && stderr.contains("208 bytes per pixel")
+        stderr.contains("a 16384×16384 image with 4 term(s) needs about 56.0 GiB of film")
+            && stderr.contains("224 bytes per pixel")
             && stderr.contains("the limit is"),
         "stderr: {stderr}"
     );

@@ -561,3 +561,38 @@ fn path_view_draws_the_sample_rays(harness: &mut Harness<'static, LumiereApp>) {
         .fold(0.0, f64::max);
     assert_eq!(result.probe.pass_luminance[position], max);
 }
+
+#[test]
+fn the_adaptive_checkbox_stops_converged_pixels_and_unticked_samples_all() {
+    use lumiere::settings::Adaptive;
+    let mut harness = harness();
+    let before = wait_for(&mut harness, "a pass", |s| s.samples_per_pixel() >= 1);
+    harness.get_by_label("adaptive").click();
+    harness.run_steps(2);
+    assert_eq!(
+        harness.state().state.settings.adaptive,
+        Some(Adaptive::default())
+    );
+    let passes = Adaptive::default().min_samples + 16;
+    let adaptive = wait_for(&mut harness, "passes past the minimum", |s| {
+        s.restarts > before.restarts && s.samples_per_pixel() >= passes
+    });
+    // the pixels that stopped were not traced in the later passes
+    let pixels = 64 * 48;
+    let every_pass = adaptive.samples_per_pixel() as u64 * pixels;
+    assert!(
+        adaptive.pixel_samples < every_pass,
+        "{} samples traced, {every_pass} with every pixel in every pass",
+        adaptive.pixel_samples
+    );
+    harness.get_by_label("adaptive").click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().state.settings.adaptive, None);
+    let uniform = wait_for(&mut harness, "uniform passes", |s| {
+        s.restarts > adaptive.restarts && s.samples_per_pixel() >= 4
+    });
+    assert_eq!(
+        uniform.pixel_samples,
+        uniform.samples_per_pixel() as u64 * pixels
+    );
+}

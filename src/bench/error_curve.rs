@@ -23,7 +23,7 @@ use crate::export::{load_exr, save_image};
 use crate::metrics::{ReferenceImage, image_error};
 use crate::render::{Budget, render};
 use crate::scene::{Scene, builtin};
-use crate::settings::{DisplaySettings, LightSampling, RenderSettings, Sampler};
+use crate::settings::{Adaptive, DisplaySettings, LightSampling, RenderSettings, Sampler};
 use crate::{Film, RenderContext};
 
 use super::csv::ErrorRow;
@@ -35,27 +35,42 @@ pub const LUMIERE: &str = "lumiere";
 /// The relMSE thresholds of the figure of merit.
 pub const RELMSE_THRESHOLDS: [f64; 2] = [1e-2, 1e-3];
 
-/// One curve: a direct-lighting strategy with a sampler.
+/// One curve: a direct-lighting strategy with a sampler, uniform or adaptive.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Estimator {
     pub light_sampling: LightSampling,
     pub sampler: Sampler,
+    /// Adaptive sampling, whose spp column counts passes (not samples traced).
+    pub adaptive: Option<Adaptive>,
 }
 
 impl Estimator {
-    /// `strategy/sampler`, as in the CSV's `estimator` column.
+    /// `strategy/sampler`, then `/adaptive T`: the CSV's `estimator` column.
     pub fn label(&self) -> String {
-        format!("{}/{}", self.light_sampling.label(), self.sampler.label())
+        let label = format!("{}/{}", self.light_sampling.label(), self.sampler.label());
+        match &self.adaptive {
+            Some(adaptive) => format!("{label}/adaptive {}", adaptive.threshold),
+            None => label,
+        }
     }
 
-    /// Every strategy with every sampler.
-    pub fn all_pairs(strategies: &[LightSampling], samplers: &[Sampler]) -> Vec<Estimator> {
+    /// Every strategy with every sampler; each twice with `adaptive`, uniform then adaptive.
+    pub fn all_pairs(
+        strategies: &[LightSampling],
+        samplers: &[Sampler],
+        adaptive: Option<Adaptive>,
+    ) -> Vec<Estimator> {
+        let modes = [None, adaptive];
+        let modes = &modes[..if adaptive.is_some() { 2 } else { 1 }];
         strategies
             .iter()
             .flat_map(|&light_sampling| {
-                samplers.iter().map(move |&sampler| Estimator {
-                    light_sampling,
-                    sampler,
+                samplers.iter().flat_map(move |&sampler| {
+                    modes.iter().map(move |&adaptive| Estimator {
+                        light_sampling,
+                        sampler,
+                        adaptive,
+                    })
                 })
             })
             .collect()
@@ -183,15 +198,6 @@ fn fnv1a(text: &str) -> u64 {
     })
 }
 
-/// The CSV's `estimator` of a curve: `strategy/sampler`, then `/adaptive T`
-/// with adaptive sampling (whose spp column counts passes).
-fn curve_label(estimator: &Estimator, settings: &RenderSettings) -> String {
-    match &settings.adaptive {
-        Some(adaptive) => format!("{}/adaptive {}", estimator.label(), adaptive.threshold),
-        None => estimator.label(),
-    }
-}
-
 /// The cached reference's file name for `scene`, `settings` and `spp`.
 pub fn reference_file_name(scene: &str, settings: &RenderSettings, spp: u32) -> String {
     let radiance = serde_json::to_string(&radiance_settings(settings)).unwrap_or_default();
@@ -291,6 +297,7 @@ pub fn measure_curves(
         let mut settings = bench.settings.clone();
         settings.light_sampling = estimator.light_sampling;
         settings.sampler = estimator.sampler;
+        settings.adaptive = estimator.adaptive;
         let context = RenderContext::new(scene.clone(), settings.clone());
         let mut film = Film::new(settings.width, settings.height);
         let (mut done, mut seconds) = (0, 0.0);
@@ -304,7 +311,7 @@ pub fn measure_curves(
                 .expect("film and reference have the same size");
             rows.push(ErrorRow {
                 renderer: LUMIERE.into(),
-                estimator: curve_label(estimator, &settings),
+                estimator: estimator.label(),
                 spp,
                 seconds,
                 rmse: error.rmse,
