@@ -638,9 +638,10 @@ fn stratified_blocks_of_16_cover_every_stratum_once() {
 }
 
 /// The 2^k points m·2^k … (m + 1)·2^k − 1 of one pixel's Sobol sequence:
-/// in every dimension of the tables each 2^−k stratum holds one number, and
-/// the pixel pair (dimensions 0, 1, a (0, 2)-sequence) is a (0, k, 2)-net:
-/// each elementary interval of area 2^−k (2^a × 2^(k−a) cells) holds one point.
+/// in every dimension each 2^−k stratum holds one number, and every pair
+/// read together (its own (0, 2)-sequence, however deep in the path) is a
+/// (0, k, 2)-net: each elementary interval of area 2^−k (2^a × 2^(k−a)
+/// cells) holds one point.
 #[test]
 fn sobol_points_fill_every_elementary_interval_once() {
     let sampler = Sampler::Sobol;
@@ -650,7 +651,7 @@ fn sobol_points_fill_every_elementary_interval_once() {
             for m in [0u64, 3, 300] {
                 let streams: Vec<SampleStream> =
                     (0..n).map(|i| stream(sampler, pixel, m * n + i)).collect();
-                for dimension in DIMENSIONS.into_iter().filter(|&d| d < 256) {
+                for dimension in DIMENSIONS {
                     let strata = streams
                         .iter()
                         .map(|s| (s.uniform(dimension) as f64 * n as f64) as usize);
@@ -661,17 +662,25 @@ fn sobol_points_fill_every_elementary_interval_once() {
                         (m + 1) * n
                     );
                 }
-                for a in 0..=k {
+                use lumiere::sampling::dim;
+                let pairs = [
+                    dim::PIXEL,
+                    // (the first light sample is stratified jointly with the pixel instead)
+                    dim::vertex_base(1) + dim::LIGHT_POSITION,
+                    dim::vertex_base(3) + dim::BRDF_DIRECTION,
+                    dim::vertex_base(30) + dim::GATHER_DIRECTION,
+                ];
+                for (a, pair) in (0..=k).flat_map(|a| pairs.map(|p| (a, p))) {
                     let (columns, rows) = (1usize << a, 1usize << (k - a));
                     let cells = streams.iter().map(|s| {
-                        let p = s.uniform2(lumiere::sampling::dim::PIXEL);
+                        let p = s.uniform2(pair);
                         let column = (p.x as f64 * columns as f64) as usize;
                         let row = (p.y as f64 * rows as f64) as usize;
                         row * columns + column
                     });
                     assert!(
                         each_once(cells, n as usize),
-                        "pixel {pixel}: points {}..{} in {columns}×{rows} cells",
+                        "pixel {pixel}, pair {pair}: points {}..{} in {columns}×{rows} cells",
                         m * n,
                         (m + 1) * n
                     );
@@ -775,8 +784,9 @@ fn direct_lighting_rmse(sampler: Sampler, spp: u32, reference: &[Vec3]) -> f64 {
 
 /// The Cornell box's direct lighting (area light, penumbrae, pixel edges) at
 /// 64 spp: scrambled Sobol points, stratified jointly over the pixel and the
-/// light, have a third of the independent numbers' error (measured 0.33);
-/// stratified ones, stratified per pair only, two thirds (measured 0.63).
+/// first light sample, have under half the independent numbers' error
+/// (measured 0.47); stratified ones, stratified per pair only, two thirds
+/// (measured 0.63).
 #[test]
 fn sobol_has_lower_error_than_independent_on_direct_lighting() {
     let reference = direct_lighting_reference(2048);
@@ -786,7 +796,7 @@ fn sobol_has_lower_error_than_independent_on_direct_lighting() {
         "RMSE at 64 spp: independent {independent:.5}, stratified {stratified:.5}, sobol {sobol:.5}"
     );
     assert!(
-        sobol < 0.5 * independent,
+        sobol < 0.55 * independent,
         "Sobol RMSE {sobol:.5} is not clearly below independent {independent:.5}"
     );
     assert!(
