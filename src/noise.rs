@@ -384,16 +384,20 @@ pub fn noise_values(
             })
             .collect(),
         DisplayMode::SampleCount => {
-            // per pixel, the fewest samples of a shown term (adaptive sampling varies them)
+            // per pixel, the fewest samples of a shown term (a term switched on
+            // later has fewer); with adaptive sampling, where terms stop at
+            // different counts, the most: how often the pixel was traced
             let terms = view.source.terms(visible);
+            let adaptive = terms
+                .iter()
+                .any(|t| film.term(t).is_some_and(|b| b.is_adaptive()));
             (0..pixels)
                 .map(|i| {
-                    let spp = terms
+                    let counts = terms
                         .iter()
-                        .map(|t| film.term(t).map_or(0, |b| b.pixel_samples(i)))
-                        .min()
-                        .unwrap_or(0);
-                    spp as f32
+                        .map(|t| film.term(t).map_or(0, |b| b.pixel_samples(i)));
+                    let spp = if adaptive { counts.max() } else { counts.min() };
+                    spp.unwrap_or(0) as f32
                 })
                 .collect()
         }

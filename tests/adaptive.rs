@@ -211,3 +211,33 @@ fn absurd_adaptive_settings_are_refused() {
     }
     assert!(settings(adaptive(0.01, 16)).validate().is_ok());
 }
+
+#[test]
+fn the_sample_count_view_shows_how_often_each_pixel_was_traced() {
+    use lumiere::noise::{DisplayMode, NoiseSource, NoiseView, Scale, noise_values};
+    let (_, film, _) = render_cornell(&settings(adaptive(0.02, 8)), 32);
+    let view = |source| NoiseView {
+        mode: DisplayMode::SampleCount,
+        source,
+        scale: Scale::Linear,
+    };
+    let sum = noise_values(&film, TermSet::COURSE, view(NoiseSource::Visible), None).unwrap();
+    let l0 = noise_values(
+        &film,
+        TermSet::COURSE,
+        view(NoiseSource::Term(Term::L0)),
+        None,
+    )
+    .unwrap();
+    for i in 0..film.pixel_count() {
+        let most = TermSet::COURSE
+            .iter()
+            .map(|t| film.term(t).unwrap().pixel_samples(i))
+            .max()
+            .unwrap();
+        assert_eq!(sum[i], most as f32);
+        assert_eq!(l0[i], film.term(Term::L0).unwrap().pixel_samples(i) as f32);
+    }
+    // the map is not flat: some pixels stopped, some ran every pass
+    assert!(sum.iter().any(|&n| n < 32.0) && sum.contains(&32.0));
+}

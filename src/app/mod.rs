@@ -339,7 +339,10 @@ impl LumiereApp {
         let Some(target) = self.exit_after_spp else {
             return;
         };
-        if snapshot.preview || snapshot.samples_per_pixel() < target || !split::settled(self) {
+        // an idle worker short of the target has nothing left to do (adaptive
+        // sampling has stopped every pixel): the run ends there
+        let short = snapshot.samples_per_pixel() < target && !snapshot.idle;
+        if snapshot.preview || short || !split::settled(self) {
             return;
         }
         // the noise view and the probe catch up with the last pass first
