@@ -14,9 +14,9 @@
 //! error of `threshold`; on dark ones (Y below 0.1 W·m⁻²·sr⁻¹) an absolute
 //! error of 0.1 · `threshold`, so black pixels do not take every sample.
 //! Each term's error is judged against the whole pixel, so a term that adds
-//! little to a pixel stops early there. A pixel none of whose terms needs samples is not
-//! traced at all, and one that needs only some is traced for those only
-//! (the integrator skips the others' work).
+//! little to a pixel stops early there. A pixel none of whose terms needs
+//! samples is not traced at all, and one that needs only some is traced for
+//! those only (the integrator skips the others' work).
 //!
 //! Once a term of a pixel has stopped it never resumes, even if the other
 //! terms' means later move the bound: its samples stay those of the term's
