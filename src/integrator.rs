@@ -408,10 +408,7 @@ impl<'a> Walk<'a> {
     /// Computes only the terms of `terms` (within the settings' terms).
     fn restrict_terms(&mut self, terms: TermSet) {
         let settings = &self.context.settings;
-        self.terms = TermSet::ALL
-            .iter()
-            .filter(|&t| terms.contains(t) && settings.terms.contains(t))
-            .fold(TermSet::NONE, |set, t| set.with(t, true));
+        self.terms = terms.intersection(settings.terms);
         self.last_reflection = self
             .terms
             .max_reflections()

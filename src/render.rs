@@ -99,9 +99,14 @@ pub fn render_pass_cancellable(
             for (offset, sample) in pixels.iter_mut().enumerate() {
                 let index = tile * width * TILE_ROWS + offset;
                 let (x, y) = ((index % width) as u32, (index / width) as u32);
-                let pixel_terms = needed.as_ref().map_or(terms, |n| n[index]);
-                let skipped = terms.iter().filter(|&t| !pixel_terms.contains(t)).count();
-                counts.skipped.converged += skipped as u64;
+                let pixel_terms = match &needed {
+                    Some(needed) => {
+                        let stopped = terms.iter().filter(|&t| !needed[index].contains(t));
+                        counts.skipped.converged += stopped.count() as u64;
+                        needed[index]
+                    }
+                    None => terms,
+                };
                 if pixel_terms.is_empty() {
                     *sample = [Vec3::ZERO; Term::COUNT];
                     continue;

@@ -109,6 +109,13 @@ impl TermSet {
         self.bits == 0
     }
 
+    /// The terms in both sets.
+    pub fn intersection(self, other: TermSet) -> Self {
+        Self {
+            bits: self.bits & other.bits,
+        }
+    }
+
     pub fn iter(self) -> impl Iterator<Item = Term> {
         Term::ALL.into_iter().filter(move |&t| self.contains(t))
     }
