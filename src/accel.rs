@@ -8,6 +8,12 @@
 //! Sphere lights (point lights made extended) are few and are tested one by
 //! one after the BVH.
 //!
+//! A direction traced only to find a light (the path ends where it lands)
+//! asks [`Accel::visible_emitter`]: when the emissive triangles are few they
+//! have a BVH of their own, searched first; most such rays miss every light
+//! and cost a few node tests instead of a full closest-hit search and the
+//! shading of what they hit.
+//!
 //! The node test is ours too ([`intersect_node`]): obvhs's skips boxes closer
 //! than a fixed t = 10⁻⁴ and rounds its slab distances either way, so rays
 //! through the shared edges of two child boxes can miss both. Ours widens
@@ -32,6 +38,17 @@ pub struct Sphere {
     pub light: u32,
 }
 
+/// The question a ray asks of the scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Query {
+    /// [`Accel::closest_hit`]: camera rays and continuations that go on.
+    ClosestHit,
+    /// [`Accel::occluded`]: shadow rays.
+    Occlusion,
+    /// [`Accel::visible_emitter`]: directions traced only to find a light.
+    VisibleEmitter,
+}
+
 /// What a ray hit first.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Hit {
@@ -51,13 +68,19 @@ impl Hit {
 
 /// The acceleration structure of one scene under one light mode.
 pub struct Accel {
-    bvh: CwBvh,
-    /// Vertices of each triangle, in BVH order.
-    vertices: Vec<[Vec3A; 3]>,
-    /// Scene triangle index of each BVH-ordered triangle.
-    scene_triangle: Vec<u32>,
+    triangles: TriangleBvh,
+    /// The emissive triangles on their own, when they are few enough for a
+    /// search of their own to pay (see [`Accel::visible_emitter`]).
+    emitters: Option<TriangleBvh>,
+    /// Whether each triangle of `triangles` (BVH order) is emissive.
+    emissive: Vec<bool>,
     pub spheres: Vec<Sphere>,
 }
+
+/// Emitters may be at most this share of the triangles for
+/// [`Accel::visible_emitter`] to search them first: past it most rays find
+/// one, and the second query (is anything in front?) costs more than it saves.
+const EMITTER_SHARE_FOR_OWN_BVH: f32 = 0.25;
 
 impl Accel {
     /// Builds the BVH over the scene triangles for which `keep` is true, plus `spheres`.
@@ -65,96 +88,65 @@ impl Accel {
         let kept: Vec<u32> = (0..scene.triangles.len() as u32)
             .filter(|&i| keep(i))
             .collect();
-        let corners = |i: u32| {
-            let t = &scene.triangles[i as usize];
-            t.vertices.map(|v| Vec3A::from(scene.positions[v as usize]))
+        let is_emissive = |i: u32| {
+            let material = scene.triangles[i as usize].material as usize;
+            scene.materials[material].is_emissive()
         };
-        let tris: Vec<obvhs::triangle::Triangle> = kept
+        let triangles = TriangleBvh::build(scene, &kept);
+        let emissive: Vec<bool> = triangles
+            .scene_triangle
             .iter()
-            .map(|&i| {
-                let [v0, v1, v2] = corners(i);
-                obvhs::triangle::Triangle { v0, v1, v2 }
-            })
+            .map(|&i| is_emissive(i))
             .collect();
-        let bvh = if tris.is_empty() {
-            CwBvh::default()
-        } else {
-            build_cwbvh_from_tris(
-                &tris,
-                BvhBuildParams::fast_build(),
-                &mut Duration::default(),
-            )
-        };
-        let scene_triangle: Vec<u32> = bvh
-            .primitive_indices
-            .iter()
-            .map(|&p| kept[p as usize])
-            .collect();
-        let vertices = scene_triangle.iter().map(|&i| corners(i)).collect();
+        let emitter_ids: Vec<u32> = kept.iter().copied().filter(|&i| is_emissive(i)).collect();
+        let few = emitter_ids.len() as f32 <= EMITTER_SHARE_FOR_OWN_BVH * kept.len() as f32;
+        let emitters = few.then(|| TriangleBvh::build(scene, &emitter_ids));
         Self {
-            bvh,
-            vertices,
-            scene_triangle,
+            triangles,
+            emitters,
+            emissive,
             spheres,
         }
     }
 
     /// Number of triangles in the BVH.
     pub fn triangle_count(&self) -> usize {
-        self.scene_triangle.len()
-    }
-
-    /// The ray in obvhs's form, with an exact inverse direction: obvhs's own
-    /// constructor replaces components below f32::EPSILON by ±1/EPSILON,
-    /// which moves slab distances and makes near-axis rays miss boxes. Only
-    /// components too small to invert (|d| < 1e-30) are nudged, to keep
-    /// 0·∞ out of the slab arithmetic.
-    fn obvhs_ray(ray: &Ray) -> obvhs::ray::Ray {
-        let direction = Vec3A::from(ray.direction);
-        let invertible = direction.abs().cmpge(Vec3A::splat(1e-30));
-        let safe = Vec3A::select(
-            invertible,
-            direction,
-            Vec3A::splat(1e-30).copysign(direction),
-        );
-        obvhs::ray::Ray {
-            origin: ray.origin.into(),
-            direction,
-            inv_direction: Vec3A::ONE / safe,
-            tmin: 0.0,
-            tmax: ray.t_max,
-        }
+        self.triangles.scene_triangle.len()
     }
 
     /// The first thing `ray` hits in (0, t_max), if any.
     pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
-        let mut best: Option<(u32, TriangleHit)> = None;
-        if self.triangle_count() > 0 {
-            let mut traverse_ray = Self::obvhs_ray(ray);
-            let sheared = ShearedRay::new(traverse_ray.origin, traverse_ray.direction);
-            let mut state = self.bvh.new_traversal(traverse_ray.direction);
-            let mut node;
-            obvhs::traverse!(
-                self.bvh,
-                node,
-                state,
-                intersect_node(node, &traverse_ray, state.oct_inv4),
-                {
-                    let id = state.primitive_id as usize;
-                    let [p0, p1, p2] = self.vertices[id];
-                    if let Some(hit) = sheared.intersect(traverse_ray.tmax, p0, p1, p2) {
-                        best = Some((id as u32, hit));
-                        traverse_ray.tmax = hit.t;
-                    }
-                }
-            );
-        }
-        let hit = best.map(|(id, h)| Hit::Triangle {
-            t: h.t,
-            triangle: self.scene_triangle[id as usize],
-            b: Vec3::new(h.b0, h.b1, h.b2),
-        });
+        let traverse_ray = obvhs_ray(ray);
+        let hit = self.triangles.closest(traverse_ray).map(|(_, hit)| hit);
         self.nearer_sphere(ray, hit)
+    }
+
+    /// The first thing `ray` hits in (0, t_max) if it is an emitter (a sphere
+    /// light or an emissive triangle), else `None`: the only query a
+    /// direction traced to find lights needs. Equal to `closest_hit` filtered
+    /// to emitters, except where a non-emissive surface and an emitter meet
+    /// the ray at the same t, where this one reports the surface (it is
+    /// blocked). When emitters are few, it searches their own BVH first —
+    /// most such rays miss every light and stop there — and only for a hit
+    /// asks the scene whether a non-emissive triangle comes first (any hit).
+    /// Such a ray is not followed further, so a leak it finds is not counted.
+    pub fn visible_emitter(&self, ray: &Ray) -> Option<Hit> {
+        let traverse_ray = obvhs_ray(ray);
+        let Some(emitters) = &self.emitters else {
+            let (id, nearest) = self.triangles.closest(traverse_ray).unzip();
+            let hit = self.nearer_sphere(ray, nearest)?;
+            // a triangle hit is the nearest triangle, number `id`
+            let emits = matches!(hit, Hit::Sphere { .. }) || id.is_some_and(|id| self.emissive[id]);
+            return emits.then_some(hit);
+        };
+        let emitter = emitters.closest(traverse_ray).map(|(_, hit)| hit);
+        let hit = self.nearer_sphere(ray, emitter)?;
+        let before_hit = obvhs::ray::Ray {
+            tmax: hit.t(),
+            ..traverse_ray
+        };
+        let blocked = self.triangles.any(before_hit, |id| !self.emissive[id]);
+        (!blocked).then_some(hit)
     }
 
     /// `hit`, or the nearest sphere `ray` meets before it.
@@ -177,13 +169,110 @@ impl Accel {
         let blocked_by_sphere = self.spheres.iter().enumerate().any(|(i, s)| {
             Some(i as u32) != skip_sphere && intersect_sphere(ray, s, ray.t_max).is_some()
         });
-        if blocked_by_sphere {
-            return true;
+        blocked_by_sphere || self.triangles.any(obvhs_ray(ray), |_| true)
+    }
+
+    /// Closest hit by testing every triangle and sphere: the reference the BVH is checked against.
+    pub fn brute_force_closest_hit(&self, ray: &Ray) -> Option<Hit> {
+        let sheared = ShearedRay::new(ray.origin.into(), ray.direction.into());
+        let mut hit = None;
+        let mut t_max = ray.t_max;
+        for (id, [p0, p1, p2]) in self.triangles.vertices.iter().enumerate() {
+            if let Some(h) = sheared.intersect(t_max, *p0, *p1, *p2) {
+                t_max = h.t;
+                hit = Some(self.triangles.hit(id, h));
+            }
         }
-        if self.triangle_count() == 0 {
+        self.nearer_sphere(ray, hit)
+    }
+}
+
+/// A set of scene triangles in an `obvhs` CWBVH, with their vertices copied in BVH order.
+#[derive(Default)]
+struct TriangleBvh {
+    bvh: CwBvh,
+    /// Vertices of each triangle, in BVH order.
+    vertices: Vec<[Vec3A; 3]>,
+    /// Scene triangle index of each BVH-ordered triangle.
+    scene_triangle: Vec<u32>,
+}
+
+impl TriangleBvh {
+    /// The BVH over scene triangles `ids`.
+    fn build(scene: &Scene, ids: &[u32]) -> Self {
+        if ids.is_empty() {
+            return Self::default();
+        }
+        let corners = |i: u32| {
+            let t = &scene.triangles[i as usize];
+            t.vertices.map(|v| Vec3A::from(scene.positions[v as usize]))
+        };
+        let tris: Vec<obvhs::triangle::Triangle> = ids
+            .iter()
+            .map(|&i| {
+                let [v0, v1, v2] = corners(i);
+                obvhs::triangle::Triangle { v0, v1, v2 }
+            })
+            .collect();
+        let bvh = build_cwbvh_from_tris(
+            &tris,
+            BvhBuildParams::fast_build(),
+            &mut Duration::default(),
+        );
+        let scene_triangle: Vec<u32> = bvh
+            .primitive_indices
+            .iter()
+            .map(|&p| ids[p as usize])
+            .collect();
+        let vertices = scene_triangle.iter().map(|&i| corners(i)).collect();
+        Self {
+            bvh,
+            vertices,
+            scene_triangle,
+        }
+    }
+
+    fn hit(&self, id: usize, hit: TriangleHit) -> Hit {
+        Hit::Triangle {
+            t: hit.t,
+            triangle: self.scene_triangle[id],
+            b: Vec3::new(hit.b0, hit.b1, hit.b2),
+        }
+    }
+
+    /// The nearest triangle `ray` hits in (0, tmax]: its BVH index and hit.
+    #[inline(always)]
+    fn closest(&self, mut ray: obvhs::ray::Ray) -> Option<(usize, Hit)> {
+        if self.scene_triangle.is_empty() {
+            return None;
+        }
+        let sheared = ShearedRay::new(ray.origin, ray.direction);
+        let mut best: Option<(usize, TriangleHit)> = None;
+        let mut state = self.bvh.new_traversal(ray.direction);
+        let mut node;
+        obvhs::traverse!(
+            self.bvh,
+            node,
+            state,
+            intersect_node(node, &ray, state.oct_inv4),
+            {
+                let id = state.primitive_id as usize;
+                let [p0, p1, p2] = self.vertices[id];
+                if let Some(hit) = sheared.intersect(ray.tmax, p0, p1, p2) {
+                    best = Some((id, hit));
+                    ray.tmax = hit.t;
+                }
+            }
+        );
+        best.map(|(id, hit)| (id, self.hit(id, hit)))
+    }
+
+    /// Whether `ray` hits, in (0, tmax], a triangle whose BVH index passes `counts`.
+    #[inline(always)]
+    fn any(&self, ray: obvhs::ray::Ray, counts: impl Fn(usize) -> bool) -> bool {
+        if self.scene_triangle.is_empty() {
             return false;
         }
-        let ray = Self::obvhs_ray(ray);
         let sheared = ShearedRay::new(ray.origin, ray.direction);
         let mut state = self.bvh.new_traversal(ray.direction);
         let mut node;
@@ -195,8 +284,9 @@ impl Accel {
                 state,
                 intersect_node(node, &ray, state.oct_inv4),
                 {
-                    let [p0, p1, p2] = self.vertices[state.primitive_id as usize];
-                    if sheared.intersect(ray.tmax, p0, p1, p2).is_some() {
+                    let id = state.primitive_id as usize;
+                    let [p0, p1, p2] = self.vertices[id];
+                    if counts(id) && sheared.intersect(ray.tmax, p0, p1, p2).is_some() {
                         blocked = true;
                         break 'traversal;
                     }
@@ -205,23 +295,27 @@ impl Accel {
         }
         blocked
     }
+}
 
-    /// Closest hit by testing every triangle and sphere: the reference the BVH is checked against.
-    pub fn brute_force_closest_hit(&self, ray: &Ray) -> Option<Hit> {
-        let sheared = ShearedRay::new(ray.origin.into(), ray.direction.into());
-        let mut hit = None;
-        let mut t_max = ray.t_max;
-        for (id, [p0, p1, p2]) in self.vertices.iter().enumerate() {
-            if let Some(h) = sheared.intersect(t_max, *p0, *p1, *p2) {
-                t_max = h.t;
-                hit = Some(Hit::Triangle {
-                    t: h.t,
-                    triangle: self.scene_triangle[id],
-                    b: Vec3::new(h.b0, h.b1, h.b2),
-                });
-            }
-        }
-        self.nearer_sphere(ray, hit)
+/// The ray in obvhs's form, with an exact inverse direction: obvhs's own
+/// constructor replaces components below f32::EPSILON by ±1/EPSILON,
+/// which moves slab distances and makes near-axis rays miss boxes. Only
+/// components too small to invert (|d| < 1e-30) are nudged, to keep
+/// 0·∞ out of the slab arithmetic.
+fn obvhs_ray(ray: &Ray) -> obvhs::ray::Ray {
+    let direction = Vec3A::from(ray.direction);
+    let invertible = direction.abs().cmpge(Vec3A::splat(1e-30));
+    let safe = Vec3A::select(
+        invertible,
+        direction,
+        Vec3A::splat(1e-30).copysign(direction),
+    );
+    obvhs::ray::Ray {
+        origin: ray.origin.into(),
+        direction,
+        inv_direction: Vec3A::ONE / safe,
+        tmin: 0.0,
+        tmax: ray.t_max,
     }
 }
 

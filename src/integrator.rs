@@ -64,7 +64,7 @@ use std::sync::Arc;
 
 use glam::Vec3;
 
-use crate::accel::{Accel, Hit};
+use crate::accel::{Accel, Hit, Query};
 use crate::brdf::{Brdf, BrdfSample};
 use crate::camera::CameraRays;
 use crate::geometry::{Frame, Ray};
@@ -208,6 +208,8 @@ pub struct PathSegment {
     /// scene diagonal away for a ray that left the scene.
     pub to: Vec3,
     pub kind: SegmentKind,
+    /// How it was traced: what a replay through the BVH asks again.
+    pub query: Query,
     /// The term its contribution is filed under (the lowest it serves).
     pub term: Term,
     /// The radiance it added to `term` (zero if none).
@@ -466,7 +468,7 @@ impl<'a> Walk<'a> {
         let term = Term::of_reflections(reflections);
         let counted = weight != EmissionWeight::Zero && self.terms.contains(term);
         let Some(hit) = self.accel().closest_hit(&ray) else {
-            self.record_escape(&ray, kind, term);
+            self.record_escape(&ray, kind, Query::ClosestHit, term);
             return None;
         };
         let mut emitted = Vec3::ZERO;
@@ -490,8 +492,47 @@ impl<'a> Walk<'a> {
             }
         };
         self.radiance[term.index()] += emitted;
-        self.record(&ray, ray.at(hit.t()), kind, term, emitted);
+        self.record(
+            &ray,
+            ray.at(hit.t()),
+            kind,
+            Query::ClosestHit,
+            term,
+            emitted,
+        );
         vertex
+    }
+
+    /// Traces `ray`, a segment that only looks for a light (the path ends
+    /// where it lands), and files under `term` the emission it finds,
+    /// weighted by `weight` and scaled by `scale` (the throughput times, for
+    /// a gathered direction, its f cos θ / pdf).
+    #[inline(always)]
+    fn find_emitter(
+        &mut self,
+        ray: &Ray,
+        scale: Vec3,
+        weight: EmissionWeight,
+        kind: SegmentKind,
+        term: Term,
+    ) {
+        let (le, w) = match self.accel().visible_emitter(ray) {
+            None => (Vec3::ZERO, 0.0),
+            Some(Hit::Sphere { sphere, .. }) => self.sphere_emission(sphere, ray.direction, weight),
+            Some(Hit::Triangle { triangle, b, .. }) => {
+                if self.context.lights.light_of_triangle(triangle).is_some() {
+                    let point = SurfacePoint::new(&self.context.scene, triangle, b);
+                    self.triangle_emission(&point, -ray.direction, weight)
+                } else {
+                    (Vec3::ZERO, 0.0)
+                }
+            }
+        };
+        let added = scale * le * w;
+        self.radiance[term.index()] += added;
+        if self.log.is_some() {
+            self.record_light_search(ray, kind, term, le, added);
+        }
     }
 
     /// The vertex at `point` reached along -`wo` after `reflections`
@@ -647,6 +688,7 @@ impl<'a> Walk<'a> {
                 occluded,
                 target_sphere: light.target_sphere,
             },
+            Query::Occlusion,
             term,
             added,
         );
@@ -676,34 +718,8 @@ impl<'a> Walk<'a> {
         self.counts.per_term[term.index()] += 1;
         let ray = vertex.point.spawn_ray(wi);
         let weight = self.gather_weight(vertex, sample.pdf);
-        let hit = self.accel().closest_hit(&ray);
-        let (le, w) = match hit {
-            None => {
-                self.record_escape(&ray, SegmentKind::Gather { hit_light: false }, term);
-                return;
-            }
-            Some(Hit::Sphere { sphere, .. }) => self.sphere_emission(sphere, wi, weight),
-            Some(Hit::Triangle { triangle, b, .. }) => {
-                if self.context.lights.light_of_triangle(triangle).is_some() {
-                    let point = SurfacePoint::new(&self.context.scene, triangle, b);
-                    self.triangle_emission(&point, -wi, weight)
-                } else {
-                    (Vec3::ZERO, 0.0)
-                }
-            }
-        };
-        let added = throughput * sample.weight * le * w;
-        self.radiance[term.index()] += added;
-        let hit_t = hit.map_or(0.0, |h| h.t());
-        self.record(
-            &ray,
-            ray.at(hit_t),
-            SegmentKind::Gather {
-                hit_light: le.max_element() > 0.0,
-            },
-            term,
-            added,
-        );
+        let kind = SegmentKind::Gather { hit_light: false };
+        self.find_emitter(&ray, throughput * sample.weight, weight, kind, term);
     }
 
     /// The weight of an emission hit found by a gathered direction of density `pdf` at `vertex`.
@@ -789,6 +805,12 @@ impl<'a> Walk<'a> {
         self.counts.bounce += 1;
         self.counts.per_term[lowest_selected(self.terms, next)] += 1;
         let ray = vertex.point.spawn_ray(wi);
+        if next >= self.last_reflection {
+            // the path ends where this ray lands: it only looks for a light
+            let term = Term::of_reflections(next);
+            self.find_emitter(&ray, *throughput, weight, SegmentKind::Bounce, term);
+            return None;
+        }
         self.follow(ray, next, *throughput, weight, SegmentKind::Bounce)
     }
 
@@ -849,13 +871,22 @@ impl<'a> Walk<'a> {
     }
 
     #[inline(always)]
-    fn record(&mut self, ray: &Ray, to: Vec3, kind: SegmentKind, term: Term, radiance: Vec3) {
+    fn record(
+        &mut self,
+        ray: &Ray,
+        to: Vec3,
+        kind: SegmentKind,
+        query: Query,
+        term: Term,
+        radiance: Vec3,
+    ) {
         if let Some(log) = self.log.as_deref_mut() {
             log.segments.push(PathSegment {
                 from: ray.origin,
                 ray: *ray,
                 to,
                 kind,
+                query,
                 term,
                 radiance,
             });
@@ -864,13 +895,43 @@ impl<'a> Walk<'a> {
 
     /// Records a ray that left the scene (it added nothing).
     #[cold]
-    fn record_escape(&mut self, ray: &Ray, kind: SegmentKind, term: Term) {
+    fn record_escape(&mut self, ray: &Ray, kind: SegmentKind, query: Query, term: Term) {
         self.counts.escaped += 1;
         if self.log.is_some() {
-            let length = self.context.scene.bounds().diagonal().max(1.0);
-            let to = ray.origin + ray.direction.normalize_or_zero() * length;
-            self.record(ray, to, kind, term, Vec3::ZERO);
+            let to = self.escape_point(ray);
+            self.record(ray, to, kind, query, term, Vec3::ZERO);
         }
+    }
+
+    /// Where the drawing of a ray that left the scene stops: one scene diagonal away.
+    fn escape_point(&self, ray: &Ray) -> Vec3 {
+        let length = self.context.scene.bounds().diagonal().max(1.0);
+        ray.origin + ray.direction.normalize_or_zero() * length
+    }
+
+    /// Records a ray that looked for a light, which met emission `le` and
+    /// added `added`. Where it stops comes from a closest-hit search, made
+    /// for the log only.
+    #[cold]
+    fn record_light_search(
+        &mut self,
+        ray: &Ray,
+        kind: SegmentKind,
+        term: Term,
+        le: Vec3,
+        added: Vec3,
+    ) {
+        let to = match self.accel().closest_hit(ray) {
+            Some(hit) => ray.at(hit.t()),
+            None => self.escape_point(ray),
+        };
+        let kind = match kind {
+            SegmentKind::Gather { .. } => SegmentKind::Gather {
+                hit_light: le.max_element() > 0.0,
+            },
+            other => other,
+        };
+        self.record(ray, to, kind, Query::VisibleEmitter, term, added);
     }
 }
 

@@ -22,7 +22,9 @@ pub struct SurfacePoint {
     pub ng: Vec3,
     /// Unit shading normal (interpolated, or `ng`), on the front side.
     pub ns: Vec3,
-    pub uv: [Vec2; 2],
+    /// Barycentrics on the triangle: texture coordinates are interpolated
+    /// from them only where a texture is read ([`SurfacePoint::uv`]).
+    pub b: Vec3,
     pub triangle: u32,
     pub material: u32,
 }
@@ -46,13 +48,12 @@ impl SurfacePoint {
         } else {
             ng
         };
-        let interpolate = |uv: &[Vec2]| b.x * uv[i0] + b.y * uv[i1] + b.z * uv[i2];
         Self {
             p,
             p_error,
             ng,
             ns,
-            uv: [interpolate(&scene.uv0), interpolate(&scene.uv1)],
+            b,
             triangle,
             material: tri.material,
         }
@@ -76,9 +77,18 @@ impl SurfacePoint {
         )
     }
 
+    /// Texture coordinates of set `set` (0 or 1; higher sets read set 1).
+    pub fn uv(&self, scene: &Scene, set: u32) -> Vec2 {
+        let uv = if set == 0 { &scene.uv0 } else { &scene.uv1 };
+        let [i0, i1, i2] = scene.triangles[self.triangle as usize]
+            .vertices
+            .map(|v| v as usize);
+        self.b.x * uv[i0] + self.b.y * uv[i1] + self.b.z * uv[i2]
+    }
+
     fn texture(&self, scene: &Scene, texture: Option<TextureRef>) -> Vec3 {
         texture.map_or(Vec3::ONE, |t| {
-            scene.textures[t.texture as usize].sample(self.uv[(t.uv_set as usize).min(1)])
+            scene.textures[t.texture as usize].sample(self.uv(scene, t.uv_set))
         })
     }
 

@@ -17,10 +17,12 @@ fn random_point(stream: &SampleStream, d: u32, extent: f32) -> Vec3 {
         * extent
 }
 
-/// A soup of random triangles of mixed sizes, plus two spheres.
-fn soup() -> Accel {
+/// A soup of random triangles of mixed sizes, every `emitter_every`-th one
+/// emissive (none if 0), and the scene it came from.
+fn soup_scene(emitter_every: u32) -> Scene {
     let mut scene = Scene::default();
-    let material = scene.add_material(Material::lambert("grey", Vec3::splat(0.5)));
+    let grey = scene.add_material(Material::lambert("grey", Vec3::splat(0.5)));
+    let light = scene.add_material(Material::emitter("light", Vec3::ONE));
     let mut positions = Vec::new();
     for i in 0..3000u64 {
         let s = SampleStream::new(1, i, 0);
@@ -30,11 +32,24 @@ fn soup() -> Accel {
             positions.push(center + random_point(&s, 3 + 3 * k, size));
         }
     }
-    let triangles: Vec<[u32; 3]> = (0..3000u32)
-        .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
-        .collect();
-    scene.add_mesh("soup", material, &positions, &triangles);
-    let spheres = vec![
+    let (mut dull, mut lit) = (Vec::new(), Vec::new());
+    for i in 0..3000u32 {
+        let triangle = [3 * i, 3 * i + 1, 3 * i + 2];
+        if emitter_every > 0 && i % emitter_every == 0 {
+            lit.push(triangle);
+        } else {
+            dull.push(triangle);
+        }
+    }
+    scene.add_mesh("soup", grey, &positions, &dull);
+    if !lit.is_empty() {
+        scene.add_mesh("lights", light, &positions, &lit);
+    }
+    scene
+}
+
+fn two_spheres() -> Vec<Sphere> {
+    vec![
         Sphere {
             center: Vec3::new(1.0, 2.0, 3.0),
             radius: 1.5,
@@ -45,8 +60,60 @@ fn soup() -> Accel {
             radius: 0.5,
             light: 1,
         },
-    ];
-    Accel::build(&scene, |_| true, spheres)
+    ]
+}
+
+/// The soup with no emitter, plus two spheres.
+fn soup() -> Accel {
+    Accel::build(&soup_scene(0), |_| true, two_spheres())
+}
+
+/// A ray of the i-th test: from inside the soup's box, one in three bounded.
+fn test_ray(i: u64) -> Ray {
+    let s = SampleStream::new(2, i, 0);
+    let origin = random_point(&s, 0, 14.0);
+    let direction = uniform_sphere(s.uniform2(3));
+    let t_max = if i % 3 == 0 { 5.0 } else { f32::INFINITY };
+    Ray::new(origin, direction, t_max)
+}
+
+/// The emitter search gives the closest hit when that is an emitter, and
+/// nothing otherwise: with few emitters (their own BVH, searched first) and
+/// with many (the plain closest hit, filtered).
+#[test]
+fn visible_emitter_is_the_closest_hit_when_that_emits() {
+    for emitter_every in [2, 13] {
+        let scene = soup_scene(emitter_every);
+        let accel = Accel::build(&scene, |_| true, two_spheres());
+        let emissive = |triangle: u32| {
+            let material = scene.triangles[triangle as usize].material;
+            scene.materials[material as usize].is_emissive()
+        };
+        let emits = |hit: &Hit| match *hit {
+            Hit::Sphere { .. } => true,
+            Hit::Triangle { triangle, .. } => emissive(triangle),
+        };
+        // the emitters alone, to tell the rays whose emitter is hidden
+        let lights_only = Accel::build(&scene, emissive, two_spheres());
+        let (mut found, mut hidden) = (0, 0);
+        for i in 0..20_000u64 {
+            let ray = test_ray(i);
+            let closest = accel.closest_hit(&ray);
+            let expected = closest.filter(emits);
+            let got = accel.visible_emitter(&ray);
+            assert_eq!(
+                got, expected,
+                "ray {i}, one triangle in {emitter_every} emissive: closest hit {closest:?}"
+            );
+            found += usize::from(got.is_some());
+            // an emitter behind the closest hit must not be reported
+            hidden += usize::from(expected.is_none() && lights_only.closest_hit(&ray).is_some());
+        }
+        assert!(
+            found > 300 && hidden > 50,
+            "one in {emitter_every}: {found} emitters seen, {hidden} hidden: too few to test"
+        );
+    }
 }
 
 #[test]
@@ -54,11 +121,7 @@ fn bvh_closest_hits_match_brute_force() {
     let accel = soup();
     let mut hits = 0;
     for i in 0..20_000u64 {
-        let s = SampleStream::new(2, i, 0);
-        let origin = random_point(&s, 0, 14.0);
-        let direction = uniform_sphere(s.uniform2(3));
-        let t_max = if i % 3 == 0 { 5.0 } else { f32::INFINITY };
-        let ray = Ray::new(origin, direction, t_max);
+        let ray = test_ray(i);
         let fast = accel.closest_hit(&ray);
         let slow = accel.brute_force_closest_hit(&ray);
         match (fast, slow) {

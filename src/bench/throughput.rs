@@ -7,8 +7,10 @@
 //! ([`RenderContext::trace_recorded`]), which keeps every ray as traced
 //! (origin, direction, t_max, the sphere a shadow ray aims at), and those
 //! exact rays are traced again through the same [`Accel`], with the query
-//! the renderer used: closest hit for camera, continuation and gathered
-//! rays, any hit (`occluded`) for shadow rays; same threads, same order.
+//! the renderer used ([`Query`]): closest hit for camera rays and
+//! continuations that go on, any hit (`occluded`) for shadow rays, the
+//! emitter search for rays that only look for a light (gathered directions,
+//! a path's last segment); same threads, same order.
 //!
 //! ratio = renderer rays/s ÷ replay rays/s: 1 would mean all the time is
 //! traversal; the rest is the cost of everything else per ray.
@@ -17,7 +19,7 @@ use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
-use crate::accel::Accel;
+use crate::accel::{Accel, Query};
 use crate::geometry::Ray;
 use crate::integrator::{PathLog, PathSegment, RayCounts, SegmentKind};
 use crate::render::{Budget, render, sample_stream};
@@ -73,6 +75,7 @@ impl RayKind {
 pub struct RecordedRay {
     pub ray: Ray,
     pub kind: RayKind,
+    pub query: Query,
     /// For shadow rays: the sphere light aimed at, which does not block.
     pub target_sphere: Option<u32>,
 }
@@ -86,6 +89,7 @@ impl RecordedRay {
         Self {
             ray: segment.ray,
             kind: RayKind::of(segment.kind),
+            query: segment.query,
             target_sphere,
         }
     }
@@ -118,9 +122,10 @@ pub fn record_segments(context: &RenderContext, passes: u32) -> Vec<PathSegment>
 /// Traces one recorded ray with the renderer's query; true if it hit (or was blocked).
 #[inline]
 pub fn replay_one(accel: &Accel, recorded: &RecordedRay) -> bool {
-    match recorded.kind {
-        RayKind::Shadow => accel.occluded(&recorded.ray, recorded.target_sphere),
-        _ => accel.closest_hit(&recorded.ray).is_some(),
+    match recorded.query {
+        Query::Occlusion => accel.occluded(&recorded.ray, recorded.target_sphere),
+        Query::ClosestHit => accel.closest_hit(&recorded.ray).is_some(),
+        Query::VisibleEmitter => accel.visible_emitter(&recorded.ray).is_some(),
     }
 }
 
@@ -132,23 +137,32 @@ pub fn replay(accel: &Accel, rays: &[RecordedRay]) -> u64 {
 }
 
 /// Whether tracing `segment`'s ray again reproduces what the renderer
-/// logged: the same hit point (or a miss) for closest-hit rays, the same
-/// verdict for shadow rays.
+/// logged: the same verdict for shadow rays; for the others the same hit
+/// point (or a miss), and for a light search an emitter there or none.
 pub fn replay_matches(context: &RenderContext, segment: &PathSegment) -> bool {
     let ray = &segment.ray;
-    match segment.kind {
-        SegmentKind::Shadow {
-            occluded,
-            target_sphere,
-        } => context.accel.occluded(ray, target_sphere) == occluded,
-        _ => match context.accel.closest_hit(ray) {
-            Some(hit) => ray.at(hit.t()) == segment.to,
-            None => {
-                let length = context.scene.bounds().diagonal().max(1.0);
-                segment.to == ray.origin + ray.direction.normalize_or_zero() * length
-            }
-        },
+    if let SegmentKind::Shadow {
+        occluded,
+        target_sphere,
+    } = segment.kind
+    {
+        return context.accel.occluded(ray, target_sphere) == occluded;
     }
+    let ends_where_logged = match context.accel.closest_hit(ray) {
+        Some(hit) => ray.at(hit.t()) == segment.to,
+        None => {
+            let length = context.scene.bounds().diagonal().max(1.0);
+            segment.to == ray.origin + ray.direction.normalize_or_zero() * length
+        }
+    };
+    let emitter_where_logged = match segment.query {
+        Query::VisibleEmitter => context
+            .accel
+            .visible_emitter(ray)
+            .is_none_or(|hit| ray.at(hit.t()) == segment.to),
+        _ => true,
+    };
+    ends_where_logged && emitter_where_logged
 }
 
 /// One line of the throughput table.
