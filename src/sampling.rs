@@ -274,7 +274,7 @@ impl SampleStream {
     #[inline]
     fn sobol(&self, dimension: u32) -> f32 {
         let (point, scramble) = self.sobol_point(dimension);
-        sobol_burley::sample(point, 0, scramble)
+        sobol_0(point, scramble)
     }
 
     /// [`SampleStream::sobol`] for a pair: Sobol's dimensions 0 and 1, one
@@ -294,8 +294,7 @@ impl SampleStream {
             _ => (dimension, (0, 1)),
         };
         let (point, scramble) = self.sobol_point(sequence_of);
-        let x = sobol_burley::sample_4d(point, 0, scramble);
-        Vec2::new(x[lanes.0], x[lanes.1])
+        Vec2::from(sobol_pair(point, scramble, lanes))
     }
 
     /// The point index in its sequence, and the scramble of `dimension`'s sequence.
@@ -307,6 +306,62 @@ impl SampleStream {
             mix64(dimension_key(self.key, dimension) ^ sequence.wrapping_mul(SAMPLE_SPREAD)) as u32;
         (point, scramble)
     }
+}
+
+/// Sobol's dimensions 0–3 in `sobol_burley`'s reversed-bit form, per
+/// byte of the 16-bit point index: `[dimension][byte][value]`, byte 0 the
+/// index's top byte (in reversed form). The generator matrices are linear
+/// over GF(2), so a point's value is the XOR of its two bytes' values: two
+/// look-ups instead of the crate's loop over the index's set bits, which
+/// was most of the padded sampler's cost. Built once (8 KiB) from the
+/// crate's own `parts::sobol_rev`.
+static SOBOL_BY_BYTE: std::sync::LazyLock<[[[u32; 256]; 2]; 4]> = std::sync::LazyLock::new(|| {
+    let mut tables = [[[0; 256]; 2]; 4];
+    for (dimension, by_byte) in tables.iter_mut().enumerate() {
+        for (byte, values) in by_byte.iter_mut().enumerate() {
+            for (value, entry) in values.iter_mut().enumerate() {
+                let index_rev = (value as u32) << (24 - 8 * byte);
+                *entry = sobol_burley::parts::sobol_rev(index_rev, dimension as u32);
+            }
+        }
+    }
+    tables
+});
+
+/// The two bytes (top first) of point `index` after `sobol_burley`'s
+/// index shuffle for `seed`, in reversed-bit form: the look-up keys of
+/// [`SOBOL_BY_BYTE`].
+#[inline(always)]
+fn shuffled_bytes(index: u32, seed: u32) -> (usize, usize) {
+    use sobol_burley::parts::{hash, owen_scramble_rev};
+    let shuffled = owen_scramble_rev(index.reverse_bits(), hash(seed ^ 0x79c6_8e4a));
+    ((shuffled >> 24) as usize, (shuffled >> 16 & 0xff) as usize)
+}
+
+/// Owen-scrambles lane `lane` (0–3) of dimension set 0 as `sobol_burley::sample_4d` does.
+#[inline(always)]
+fn scrambled_lane(sobol_rev: u32, seed: u32, lane: usize) -> f32 {
+    use sobol_burley::parts::{hash, owen_scramble_rev, u32_to_f32_norm};
+    const LANE_KEYS: [u32; 4] = [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8];
+    let scramble = hash(seed.wrapping_mul(0x9c8f_2d3b) ^ LANE_KEYS[lane]);
+    u32_to_f32_norm(owen_scramble_rev(sobol_rev, scramble).reverse_bits())
+}
+
+/// `sobol_burley::sample(index, 0, seed)`, bit for bit, by table.
+#[inline]
+fn sobol_0(index: u32, seed: u32) -> f32 {
+    let (high, low) = shuffled_bytes(index, seed);
+    let by_byte = &SOBOL_BY_BYTE[0];
+    scrambled_lane(by_byte[0][high] ^ by_byte[1][low], seed, 0)
+}
+
+/// Lanes `lanes` of `sobol_burley::sample_4d(index, 0, seed)`, bit for bit, by table.
+#[inline]
+fn sobol_pair(index: u32, seed: u32, lanes: (usize, usize)) -> [f32; 2] {
+    let (high, low) = shuffled_bytes(index, seed);
+    let tables = &*SOBOL_BY_BYTE;
+    let lane = |d: usize| scrambled_lane(tables[d][0][high] ^ tables[d][1][low], seed, d);
+    [lane(lanes.0), lane(lanes.1)]
 }
 
 /// A permutation of 0..16 chosen by `seed` (Kensler 2013, "Correlated
@@ -584,6 +639,30 @@ impl AliasTable {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_table_sobol_is_sobol_burleys_bit_for_bit() {
+        for seed in [0, 1, 0x9e37_79b9, u32::MAX] {
+            for index in (0..1 << 16).step_by(7).chain([0xffff, 0x8000, 0x00ff]) {
+                let reference = sobol_burley::sample_4d(index, 0, seed);
+                for lanes in [(0, 1), (2, 3)] {
+                    let pair = sobol_pair(index, seed, lanes);
+                    assert_eq!(
+                        pair[0].to_bits(),
+                        reference[lanes.0].to_bits(),
+                        "{index} {seed}"
+                    );
+                    assert_eq!(
+                        pair[1].to_bits(),
+                        reference[lanes.1].to_bits(),
+                        "{index} {seed}"
+                    );
+                }
+                let single = sobol_burley::sample(index, 0, seed);
+                assert_eq!(sobol_0(index, seed).to_bits(), single.to_bits());
+            }
+        }
+    }
 
     #[test]
     fn alias_table_frequencies_match_weights() {
