@@ -57,6 +57,11 @@ impl Brdf {
         matches!(self, Brdf::Mirror { .. })
     }
 
+    /// Whether sampling it first picks a lobe (with a number of its own).
+    pub fn chooses_lobe(&self) -> bool {
+        matches!(self, Brdf::Phong { .. })
+    }
+
     /// Whether the model reflects nothing (a black surface).
     pub fn is_black(&self) -> bool {
         match *self {

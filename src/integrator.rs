@@ -704,8 +704,8 @@ impl<'a> Walk<'a> {
             &vertex.brdf,
             vertex.wo_local,
             directions,
-            stream.uniform(base + dim::GATHER_LOBE),
-            stream.uniform2(base + dim::GATHER_DIRECTION),
+            stream,
+            (base + dim::GATHER_LOBE, base + dim::GATHER_DIRECTION),
         ) else {
             return;
         };
@@ -777,8 +777,8 @@ impl<'a> Walk<'a> {
             &vertex.brdf,
             vertex.wo_local,
             self.continuation_directions(&vertex.brdf),
-            stream.uniform(base + dim::BRDF_LOBE),
-            stream.uniform2(base + dim::BRDF_DIRECTION),
+            stream,
+            (base + dim::BRDF_LOBE, base + dim::BRDF_DIRECTION),
         )?;
         let wi = vertex.frame.to_world(sample.wi).normalize();
         if wi.dot(vertex.ng) <= 0.0 {
@@ -945,20 +945,37 @@ fn gather_directions(strategy: LightSampling) -> Option<Directions> {
 }
 
 /// A direction (local frame) drawn from `directions` at a vertex of `brdf`
-/// seen from `wo`, with f cos θ / pdf and its pdf; `None` if it reflects nothing.
+/// seen from `wo`, with f cos θ / pdf and its pdf; `None` if it reflects
+/// nothing. The numbers come from `stream`'s dimensions (lobe choice,
+/// direction pair), each read only if the routine uses it.
 #[inline(always)]
 fn draw_direction(
     brdf: &Brdf,
     wo: Vec3,
     directions: Directions,
-    u_lobe: f32,
-    u: glam::Vec2,
+    stream: &SampleStream,
+    (lobe_dimension, direction_dimension): (u32, u32),
 ) -> Option<BrdfSample> {
     let (wi, pdf) = match directions {
-        Directions::Brdf => return brdf.sample(wo, u_lobe, u),
-        Directions::Uniform => (uniform_hemisphere(u), UNIFORM_HEMISPHERE_PDF),
+        Directions::Brdf => {
+            let u_lobe = if brdf.chooses_lobe() {
+                stream.uniform(lobe_dimension)
+            } else {
+                0.0
+            };
+            let u = if brdf.is_delta() {
+                glam::Vec2::ZERO
+            } else {
+                stream.uniform2(direction_dimension)
+            };
+            return brdf.sample(wo, u_lobe, u);
+        }
+        Directions::Uniform => (
+            uniform_hemisphere(stream.uniform2(direction_dimension)),
+            UNIFORM_HEMISPHERE_PDF,
+        ),
         Directions::Cosine => {
-            let wi = cosine_hemisphere(u);
+            let wi = cosine_hemisphere(stream.uniform2(direction_dimension));
             (wi, cosine_hemisphere_pdf(wi.z))
         }
     };
