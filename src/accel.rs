@@ -139,7 +139,12 @@ impl Accel {
             let emits = matches!(hit, Hit::Sphere { .. }) || id.is_some_and(|id| self.emissive[id]);
             return emits.then_some(hit);
         };
-        let emitter = emitters.closest(traverse_ray).map(|(_, hit)| hit);
+        // most such rays miss the lights' box: no traversal for them
+        let emitter = if emitters.bounds_may_meet(&traverse_ray) {
+            emitters.closest(traverse_ray).map(|(_, hit)| hit)
+        } else {
+            None
+        };
         let hit = self.nearer_sphere(ray, emitter)?;
         let before_hit = obvhs::ray::Ray {
             tmax: hit.t(),
@@ -195,6 +200,8 @@ struct TriangleBvh {
     vertices: Vec<[Vec3A; 3]>,
     /// Scene triangle index of each BVH-ordered triangle.
     scene_triangle: Vec<u32>,
+    /// The box around every triangle (min, max corners).
+    bounds: [Vec3A; 2],
 }
 
 impl TriangleBvh {
@@ -220,12 +227,36 @@ impl TriangleBvh {
             .iter()
             .map(|&p| ids[p as usize])
             .collect();
-        let vertices = scene_triangle.iter().map(|&i| corners(i)).collect();
+        let vertices: Vec<[Vec3A; 3]> = scene_triangle.iter().map(|&i| corners(i)).collect();
+        let corner_points = vertices.iter().flatten();
+        let bounds = [
+            corner_points
+                .clone()
+                .fold(Vec3A::INFINITY, |m, &p| m.min(p)),
+            corner_points.fold(Vec3A::NEG_INFINITY, |m, &p| m.max(p)),
+        ];
         Self {
             bvh,
             vertices,
             scene_triangle,
+            bounds,
         }
+    }
+
+    /// Whether `ray` may meet the box around every triangle in [0, tmax]:
+    /// a slab test whose distances are widened by a bound on their rounding
+    /// (the difference, the product and the inverse direction, as in
+    /// [`intersect_node`]), so it is never false for a ray that hits one.
+    #[inline(always)]
+    fn bounds_may_meet(&self, ray: &obvhs::ray::Ray) -> bool {
+        let t0 = (self.bounds[0] - ray.origin) * ray.inv_direction;
+        let t1 = (self.bounds[1] - ray.origin) * ray.inv_direction;
+        let slack = gamma(4);
+        let near = t0.min(t1);
+        let far = t0.max(t1);
+        let near = (near - slack * near.abs()).max_element().max(0.0);
+        let far = (far + slack * far.abs()).min_element();
+        near <= far && near <= ray.tmax * (1.0 + 2.0 * gamma(3))
     }
 
     fn hit(&self, id: usize, hit: TriangleHit) -> Hit {

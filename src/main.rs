@@ -90,7 +90,7 @@ struct BenchArgs {
     /// Error curves: direct-lighting strategies, one curve each (default: --light-sampling).
     #[arg(long, value_delimiter = ',')]
     strategies: Vec<LightSampling>,
-    /// Error curves: samplers, one curve per strategy and sampler (default: --sampler).
+    /// Error curves: samplers, one curve per strategy and sampler (default: all three).
     #[arg(long, value_delimiter = ',')]
     samplers: Vec<Sampler>,
     /// Error curves: also run this renderer's script (mitsuba: tests/reference/mitsuba_bench.py).
@@ -645,8 +645,9 @@ fn run_bench(args: &BenchArgs) -> Result<(), Failure> {
     } else {
         args.strategies.clone()
     };
+    // the samplers are what the error curves compare first: all of them unless asked
     let samplers = if args.samplers.is_empty() {
-        vec![settings.sampler]
+        Sampler::ALL.to_vec()
     } else {
         args.samplers.clone()
     };
