@@ -35,7 +35,7 @@ fn soup_scene(emitter_every: u32) -> Scene {
     let (mut dull, mut lit) = (Vec::new(), Vec::new());
     for i in 0..3000u32 {
         let triangle = [3 * i, 3 * i + 1, 3 * i + 2];
-        if emitter_every > 0 && i % emitter_every == 0 {
+        if emitter_every > 0 && i.is_multiple_of(emitter_every) {
             lit.push(triangle);
         } else {
             dull.push(triangle);
@@ -73,7 +73,11 @@ fn test_ray(i: u64) -> Ray {
     let s = SampleStream::new(2, i, 0);
     let origin = random_point(&s, 0, 14.0);
     let direction = uniform_sphere(s.uniform2(3));
-    let t_max = if i % 3 == 0 { 5.0 } else { f32::INFINITY };
+    let t_max = if i.is_multiple_of(3) {
+        5.0
+    } else {
+        f32::INFINITY
+    };
     Ray::new(origin, direction, t_max)
 }
 
