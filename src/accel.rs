@@ -49,6 +49,16 @@ pub enum Query {
     VisibleEmitter,
 }
 
+/// What [`Accel::search_emitters`] found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EmitterSearch {
+    /// The first thing along the ray, if it emits.
+    pub hit: Option<Hit>,
+    /// Whether the whole scene's BVH was searched (false: the ray met no
+    /// light's box or triangle, and that settled it).
+    pub scene_searched: bool,
+}
+
 /// What a ray hit first.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Hit {
@@ -131,13 +141,23 @@ impl Accel {
     /// asks the scene whether a non-emissive triangle comes first (any hit).
     /// Such a ray is not followed further, so a leak it finds is not counted.
     pub fn visible_emitter(&self, ray: &Ray) -> Option<Hit> {
+        self.search_emitters(ray).hit
+    }
+
+    /// [`Accel::visible_emitter`], saying whether it had to search the whole scene.
+    pub fn search_emitters(&self, ray: &Ray) -> EmitterSearch {
         let traverse_ray = obvhs_ray(ray);
         let Some(emitters) = &self.emitters else {
             let (id, nearest) = self.triangles.closest(traverse_ray).unzip();
-            let hit = self.nearer_sphere(ray, nearest)?;
+            let hit = self.nearer_sphere(ray, nearest);
             // a triangle hit is the nearest triangle, number `id`
-            let emits = matches!(hit, Hit::Sphere { .. }) || id.is_some_and(|id| self.emissive[id]);
-            return emits.then_some(hit);
+            let emits = |hit: &Hit| {
+                matches!(hit, Hit::Sphere { .. }) || id.is_some_and(|id| self.emissive[id])
+            };
+            return EmitterSearch {
+                hit: hit.filter(emits),
+                scene_searched: true,
+            };
         };
         // most such rays miss the lights' box: no traversal for them
         let emitter = if emitters.bounds_may_meet(&traverse_ray) {
@@ -145,13 +165,21 @@ impl Accel {
         } else {
             None
         };
-        let hit = self.nearer_sphere(ray, emitter)?;
+        let Some(hit) = self.nearer_sphere(ray, emitter) else {
+            return EmitterSearch {
+                hit: None,
+                scene_searched: false,
+            };
+        };
         let before_hit = obvhs::ray::Ray {
             tmax: hit.t(),
             ..traverse_ray
         };
         let blocked = self.triangles.any(before_hit, |id| !self.emissive[id]);
-        (!blocked).then_some(hit)
+        EmitterSearch {
+            hit: (!blocked).then_some(hit),
+            scene_searched: true,
+        }
     }
 
     /// `hit`, or the nearest sphere `ray` meets before it.

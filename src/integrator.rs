@@ -58,7 +58,10 @@
 //! traces camera rays only), no continuation whose only use would be an
 //! emission hit of weight 0, no shadow ray for a light behind the surface,
 //! no gathered direction in a scene whose lights cannot be hit (points,
-//! spots, the sun). [`SkippedWork`] counts each.
+//! spots, the sun). A direction traced only to find a light (a gathered one,
+//! or the path's last segment) asks [`Accel::search_emitters`], which
+//! searches the whole scene only if the ray meets a light. [`SkippedWork`]
+//! counts each.
 
 use std::sync::Arc;
 
@@ -119,6 +122,10 @@ pub struct SkippedWork {
     pub roulette: u64,
     /// Samples of a pixel's term not taken: adaptive sampling had stopped it.
     pub converged: u64,
+    /// Searches of the whole scene's BVH not made: a direction traced only to
+    /// find a light met no light's box or triangle (the ray itself is traced,
+    /// against the lights alone).
+    pub scene_searches: u64,
 }
 
 impl SkippedWork {
@@ -134,6 +141,7 @@ impl SkippedWork {
         self.continuations += other.continuations;
         self.roulette += other.roulette;
         self.converged += other.converged;
+        self.scene_searches += other.scene_searches;
     }
 
     /// One line for summaries: the non-zero counts.
@@ -147,6 +155,10 @@ impl SkippedWork {
             (
                 self.converged,
                 "term samples of converged pixels (adaptive)",
+            ),
+            (
+                self.scene_searches,
+                "scene searches (light searches that met no light)",
             ),
         ]
         .iter()
@@ -516,7 +528,9 @@ impl<'a> Walk<'a> {
         kind: SegmentKind,
         term: Term,
     ) {
-        let (le, w) = match self.accel().visible_emitter(ray) {
+        let search = self.accel().search_emitters(ray);
+        self.counts.skipped.scene_searches += u64::from(!search.scene_searched);
+        let (le, w) = match search.hit {
             None => (Vec3::ZERO, 0.0),
             Some(Hit::Sphere { sphere, .. }) => self.sphere_emission(sphere, ray.direction, weight),
             Some(Hit::Triangle { triangle, b, .. }) => {

@@ -65,3 +65,23 @@ fn russian_roulette_ends_some_l3_paths() {
     assert!(rays.skipped.roulette > 0, "{rays:?}");
     assert!(rays.skipped.describe().contains("Russian roulette"));
 }
+
+#[test]
+fn light_searches_that_meet_no_light_skip_the_scene_search_and_are_counted() {
+    // L0,L1 with MIS: every continuation only looks for the light
+    let settings = small(32, 24, TermSet::only(Term::L0).with(Term::L1, true));
+    let rays = rays_of(&settings, 4);
+    let searches = rays.bounce;
+    let skipped = rays.skipped.scene_searches;
+    // the ceiling light is small: most miss it, some find it (or a blocker)
+    assert!(
+        skipped > searches / 2 && skipped < searches,
+        "{skipped} of {searches} searches skipped: {rays:?}"
+    );
+    // in a furnace everything emits: the search is the plain closest hit
+    let furnace = RenderContext::new(builtin::furnace(0.5, 1.0), settings.clone());
+    let mut film = Film::new(settings.width, settings.height);
+    let rays = render(&furnace, &mut film, Budget::Samples(4), |_| {}).rays;
+    assert!(rays.bounce > 0, "{rays:?}");
+    assert_eq!(rays.skipped.scene_searches, 0, "{rays:?}");
+}
