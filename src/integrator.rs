@@ -480,7 +480,7 @@ impl<'a> Walk<'a> {
         let term = Term::of_reflections(reflections);
         let counted = weight != EmissionWeight::Zero && self.terms.contains(term);
         let Some(hit) = self.accel().closest_hit(&ray) else {
-            self.record_escape(&ray, kind, Query::ClosestHit, term);
+            self.record_escape(&ray, kind, term);
             return None;
         };
         let mut emitted = Vec3::ZERO;
@@ -907,13 +907,13 @@ impl<'a> Walk<'a> {
         }
     }
 
-    /// Records a ray that left the scene (it added nothing).
+    /// Records a closest-hit ray that left the scene (it added nothing).
     #[cold]
-    fn record_escape(&mut self, ray: &Ray, kind: SegmentKind, query: Query, term: Term) {
+    fn record_escape(&mut self, ray: &Ray, kind: SegmentKind, term: Term) {
         self.counts.escaped += 1;
         if self.log.is_some() {
             let to = self.escape_point(ray);
-            self.record(ray, to, kind, query, term, Vec3::ZERO);
+            self.record(ray, to, kind, Query::ClosestHit, term, Vec3::ZERO);
         }
     }
 
