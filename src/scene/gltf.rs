@@ -1075,6 +1075,15 @@ fn assemble_triangles(mode: Mode, indices: &[u32]) -> (Vec<[u32; 3]>, usize) {
     }
 }
 
+/// Whether the vertex normals of triangle (a, b, c) all lie along its face
+/// normal (either way, to 10⁻⁶ in cosine): a flat face, whose shading normal
+/// is the face normal, so nothing is interpolated per hit. Degenerate
+/// triangles have no face normal and keep their vertex normals.
+fn normals_are_the_face_normal(a: Vec3, b: Vec3, c: Vec3, normals: [Vec3; 3]) -> bool {
+    let face = (b - a).cross(c - a).normalize_or_zero();
+    face != Vec3::ZERO && normals.iter().all(|n| n.dot(face).abs() >= 1.0 - 1e-6)
+}
+
 fn is_degenerate(a: Vec3, b: Vec3, c: Vec3) -> bool {
     (b - a).cross(c - a).length_squared() == 0.0
 }
@@ -1711,13 +1720,15 @@ impl<'f> SceneBuilder<'f> {
         if is_degenerate(a, b, c) {
             self.degenerate_triangles += 1;
         }
+        let has_normals = corners
+            .iter()
+            .all(|&corner| smooth_vertices[corner as usize]);
+        let normals = vertices.map(|v| self.scene.normals[v as usize]);
         self.scene.triangles.push(Triangle {
             vertices,
             material,
             object,
-            smooth: corners
-                .iter()
-                .all(|&corner| smooth_vertices[corner as usize]),
+            smooth: has_normals && !normals_are_the_face_normal(a, b, c, normals),
         });
     }
 
