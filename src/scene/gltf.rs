@@ -2064,3 +2064,26 @@ fn short_uri(uri: &str) -> &str {
         uri
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_normals_along_the_face_normal_make_a_flat_triangle() {
+        let (a, b, c) = (Vec3::ZERO, Vec3::X, Vec3::Y);
+        assert!(normals_are_the_face_normal(a, b, c, [Vec3::Z; 3]));
+        // either way round: the shading frame faces the ray regardless
+        assert!(normals_are_the_face_normal(a, b, c, [Vec3::NEG_Z; 3]));
+        // a normal tilted by a degree is a curved surface's
+        let tilted = Vec3::new(1f32.to_radians().sin(), 0.0, 1f32.to_radians().cos());
+        assert!(!normals_are_the_face_normal(
+            a,
+            b,
+            c,
+            [Vec3::Z, tilted, Vec3::Z]
+        ));
+        // a degenerate triangle has no face normal to compare with
+        assert!(!normals_are_the_face_normal(a, b, 2.0 * b, [Vec3::Z; 3]));
+    }
+}
