@@ -277,8 +277,8 @@ impl SampleStream {
         sobol_0(point, scramble)
     }
 
-    /// [`SampleStream::sobol`] for a pair: Sobol's dimensions 0 and 1, one
-    /// index shuffle for both (the crate computes four lanes at once).
+    /// [`SampleStream::sobol`] for a pair: Sobol's dimensions 0 and 1 under
+    /// one index shuffle for both.
     ///
     /// One exception: the pixel pair and the first vertex's light sample,
     /// the four dimensions of direct lighting through a pixel, are Sobol's
