@@ -76,11 +76,25 @@ fn term_toggles_keep_the_film_and_radiance_changes_restart_it() {
     });
     assert_eq!(shown.restarts, 1);
 
-    // a BRDF override changes radiance: restart from zero
+    // a BRDF override changes radiance: restart from zero. Paused, the
+    // restart publishes only its preview, whose counts are zero; this does
+    // not depend on how many passes the worker ran while the test slept.
     request.settings.brdf = BrdfOverride::Mirror;
+    request.paused = true;
     renderer.request(request.clone());
     let restarted = wait_for(&renderer, "the restart", |s| s.restarts == 2);
-    assert!(restarted.samples_per_pixel() < shown.samples_per_pixel() || restarted.preview);
+    assert!(restarted.preview);
+    assert_eq!(restarted.term_samples, [0; Term::COUNT]);
+
+    // resumed with a stop at one sample: the film holds exactly one, well
+    // below the count it had before the restart
+    assert!(shown.samples_per_pixel() >= 4);
+    request.paused = false;
+    request.stop_at_spp = Some(1);
+    renderer.request(request.clone());
+    let one = wait_for(&renderer, "one sample", |s| s.idle && !s.preview);
+    assert_eq!(one.restarts, 2, "resuming must not restart again");
+    assert_eq!(one.samples_per_pixel(), 1);
 }
 
 #[test]
