@@ -261,8 +261,7 @@ impl RenderContext {
     pub fn new(scene: impl Into<Arc<Scene>>, settings: RenderSettings) -> Self {
         let scene = scene.into();
         let lights = LightTable::build(&scene, &settings);
-        let hidden = &lights.hidden_triangles;
-        let accel = Accel::build(&scene, |t| !hidden[t as usize], lights.spheres.clone());
+        let accel = Accel::build(&scene, |t| !lights.is_hidden(t), lights.spheres.clone());
         let camera = CameraRays::new(&scene.default_camera(), settings.width, settings.height);
         Self {
             scene,

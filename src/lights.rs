@@ -169,23 +169,22 @@ pub struct LightTable {
     has_delta_lights: bool,
     /// Whether some selectable light can be hit by a ray (triangle or sphere).
     has_hittable_lights: bool,
-    /// Light index of each scene triangle (`NO_ID` if it is not a light).
-    triangle_light: Vec<u32>,
+    /// (scene triangle, light index) of each triangle light, sorted by
+    /// triangle: a lookup costs a binary search over the emitters, not four
+    /// bytes for every triangle of the scene.
+    triangle_light: Vec<(u32, u32)>,
     /// Light index of each accel sphere.
     sphere_light: Vec<u32>,
-    /// Scene triangles that stop being geometry (emitters collapsed to points).
-    pub hidden_triangles: Vec<bool>,
+    /// Scene triangles that stop being geometry (emitters collapsed to
+    /// points), one flag per scene triangle; empty when none is hidden.
+    hidden_triangles: Vec<bool>,
     pub spheres: Vec<Sphere>,
 }
 
 impl LightTable {
     /// The lights of `scene` as `settings.light_mode` asks.
     pub fn build(scene: &Scene, settings: &RenderSettings) -> Self {
-        let mut table = LightTable {
-            triangle_light: vec![NO_ID; scene.triangles.len()],
-            hidden_triangles: vec![false; scene.triangles.len()],
-            ..Default::default()
-        };
+        let mut table = LightTable::default();
         match settings.light_mode {
             LightMode::Point => table.add_collapsed_emitters(scene),
             _ => table.add_emissive_triangles(scene),
@@ -227,10 +226,12 @@ impl LightTable {
             }
             let area = triangle_area(scene, i as u32);
             if area > 0.0 {
-                self.triangle_light[i] = self.push(Light::Triangle {
+                let light = self.push(Light::Triangle {
                     triangle: i as u32,
                     area,
                 });
+                // in increasing triangle order: the list stays sorted
+                self.triangle_light.push((i as u32, light));
             }
         }
     }
@@ -241,9 +242,11 @@ impl LightTable {
         let mut groups: std::collections::BTreeMap<(u32, u32), Vec<u32>> = Default::default();
         for (i, tri) in scene.triangles.iter().enumerate() {
             if scene.materials[tri.material as usize].is_emissive() {
+                self.hidden_triangles.resize(scene.triangles.len(), false);
                 self.hidden_triangles[i] = true;
+                let object = scene.object_of_triangle(i as u32);
                 groups
-                    .entry((tri.object, tri.material))
+                    .entry((object, tri.material))
                     .or_default()
                     .push(i as u32);
             }
@@ -348,10 +351,24 @@ impl LightTable {
 
     /// Light index of scene triangle `triangle`, if it is an emitter of this table.
     pub fn light_of_triangle(&self, triangle: u32) -> Option<u32> {
-        self.triangle_light
+        let found = self
+            .triangle_light
+            .binary_search_by_key(&triangle, |&(t, _)| t);
+        found.ok().map(|at| self.triangle_light[at].1)
+    }
+
+    /// Whether scene triangle `triangle` stopped being geometry (an emitter
+    /// collapsed to a point light).
+    pub fn is_hidden(&self, triangle: u32) -> bool {
+        self.hidden_triangles
             .get(triangle as usize)
             .copied()
-            .filter(|&l| l != NO_ID)
+            .unwrap_or(false)
+    }
+
+    /// Whether some scene triangle stopped being geometry.
+    pub fn hides_triangles(&self) -> bool {
+        !self.hidden_triangles.is_empty()
     }
 
     /// Draws light at surface point `at` from two uniform numbers (selection, position).

@@ -79,11 +79,10 @@ impl SurfacePoint {
 
     /// Texture coordinates of set `set` (0 or 1; higher sets read set 1).
     pub fn uv(&self, scene: &Scene, set: u32) -> Vec2 {
-        let uv = if set == 0 { &scene.uv0 } else { &scene.uv1 };
         let [i0, i1, i2] = scene.triangles[self.triangle as usize]
             .vertices
-            .map(|v| v as usize);
-        self.b.x * uv[i0] + self.b.y * uv[i1] + self.b.z * uv[i2]
+            .map(|v| scene.uv(set, v));
+        self.b.x * i0 + self.b.y * i1 + self.b.z * i2
     }
 
     fn texture(&self, scene: &Scene, texture: Option<TextureRef>) -> Vec3 {

@@ -47,11 +47,7 @@ fn object_id(scene: &Scene, name: &str) -> u32 {
 
 fn triangles_of<'s>(scene: &'s Scene, name: &str) -> Vec<&'s Triangle> {
     let object = object_id(scene, name);
-    scene
-        .triangles
-        .iter()
-        .filter(|t| t.object == object)
-        .collect()
+    scene.triangles_of_object(object).iter().collect()
 }
 
 fn corners(scene: &Scene, triangle: &Triangle) -> [Vec3; 3] {
@@ -63,11 +59,19 @@ fn geometric_normal(scene: &Scene, triangle: &Triangle) -> Vec3 {
     (b - a).cross(c - a).normalize()
 }
 
+/// Each per-vertex attribute is stored for every vertex or for none.
 fn assert_pool_lengths_match(scene: &Scene) {
     let n = scene.positions.len();
-    assert_eq!(scene.normals.len(), n);
-    assert_eq!(scene.uv0.len(), n);
-    assert_eq!(scene.uv1.len(), n);
+    for (name, len) in [
+        ("normals", scene.normals.len()),
+        ("uv0", scene.uv0.len()),
+        ("uv1", scene.uv1.len()),
+    ] {
+        assert!(
+            len == 0 || len == n,
+            "{name}: {len} values for {n} vertices"
+        );
+    }
 }
 
 #[test]
@@ -162,25 +166,17 @@ fn primitives_without_indices_strips_and_fans_become_triangles() {
     assert_eq!(scene.triangles.len(), 5);
     assert_eq!(scene.objects.len(), 3);
     assert_pool_lengths_match(&scene);
+    // positions only: no normal or UV is stored
+    assert!(scene.normals.is_empty() && scene.uv0.is_empty() && scene.uv1.is_empty());
+    assert_eq!(scene.uv(0, 0), Vec2::ZERO);
 
-    let local = |t: &Triangle| {
-        let first = t.vertices.iter().min().unwrap();
-        let base = scene
-            .triangles
-            .iter()
-            .filter(|u| u.object == t.object)
-            .flat_map(|u| u.vertices)
-            .min()
-            .unwrap()
-            .min(*first);
-        t.vertices.map(|v| v - base)
-    };
+    // each object's triangles, numbered from its own first vertex
     let by_object = |object: u32| -> Vec<[u32; 3]> {
-        scene
-            .triangles
+        let triangles = scene.triangles_of_object(object);
+        let base = triangles.iter().flat_map(|t| t.vertices).min().unwrap();
+        triangles
             .iter()
-            .filter(|t| t.object == object)
-            .map(local)
+            .map(|t| t.vertices.map(|v| v - base))
             .collect()
     };
     assert_eq!(by_object(0), [[0, 1, 2]]);
@@ -190,7 +186,7 @@ fn primitives_without_indices_strips_and_fans_become_triangles() {
         "strip keeps the winding"
     );
     assert_eq!(by_object(2), [[1, 2, 0], [2, 3, 0]], "fan around vertex 0");
-    for t in scene.triangles.iter().filter(|t| t.object == 1) {
+    for t in scene.triangles_of_object(1) {
         assert_close(geometric_normal(&scene, t), Vec3::Z);
     }
 

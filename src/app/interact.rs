@@ -180,7 +180,7 @@ impl LumiereApp {
         let y = (pixel.y as u32).min(settings.height - 1);
         let ray = rays.generate(x, y, pixel.fract());
         match accel.closest_hit(&ray)? {
-            Hit::Triangle { triangle, .. } => Some(scene.triangles[triangle as usize].object),
+            Hit::Triangle { triangle, .. } => Some(scene.object_of_triangle(triangle)),
             Hit::Sphere { .. } => None,
         }
     }
@@ -199,7 +199,8 @@ impl LumiereApp {
             copy.name = format!("{} ({})", copy.name, scene.objects[object as usize].name);
             let id = scene.add_material(copy);
             scene.objects[object as usize].material = id;
-            for t in scene.triangles.iter_mut().filter(|t| t.object == object) {
+            let range = scene.objects[object as usize].triangles.clone();
+            for t in &mut scene.triangles[range.start as usize..range.end as usize] {
                 t.material = id;
             }
             id

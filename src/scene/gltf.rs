@@ -63,7 +63,7 @@ use image::DynamicImage;
 use super::texture::srgb_to_linear;
 use super::{
     Camera, Material, Object, Projection, PunctualKind, PunctualLight, Scene, Texture, TextureRef,
-    Triangle, WrapMode,
+    Triangle, WrapMode, append_vertex_attribute,
 };
 use crate::error::SceneError;
 use crate::film::memory_ceiling;
@@ -91,7 +91,9 @@ const MAX_ZERO_FILLED_BYTES: usize = 64 << 20;
 const MAX_SCENE_ELEMENTS: usize = 1 << 26;
 
 /// Heap bytes a triangle takes at the peak of loading a scene and building
-/// its BVH: `lumiere bench` measures 430–450 (docs/benchmarks.md); rounded up.
+/// its BVH: `lumiere bench` measures 296 for a file of positions only, one
+/// vertex per triangle (docs/benchmarks.md); an unindexed mesh with normals
+/// and two UV sets adds 3 × 28 bytes of vertex data. Rounded up.
 const PEAK_BYTES_PER_TRIANGLE: u64 = 512;
 
 /// The most triangles a scene may have, and why: [`MAX_SCENE_ELEMENTS`], and
@@ -990,8 +992,8 @@ fn rigid_part(world: &Affine3A) -> Affine3A {
 struct PrimitiveVertices {
     positions: Vec<Vec3>,
     normals: Option<Vec<Vec3>>,
-    uv0: Vec<Vec2>,
-    uv1: Vec<Vec2>,
+    uv0: Option<Vec<Vec2>>,
+    uv1: Option<Vec<Vec2>>,
 }
 
 /// Refuses, before any geometry is read, a scene whose placed meshes draw
@@ -1311,6 +1313,7 @@ impl<'f> SceneBuilder<'f> {
         }
         self.walk(scene_roots(self.document))?;
         self.add_summary_warnings();
+        self.scene.shrink_to_fit();
         Ok(self.scene)
     }
 
@@ -1506,21 +1509,22 @@ impl<'f> SceneBuilder<'f> {
             ));
         }
         let material = self.material_id(primitive.material())?;
-        let object = self.scene.objects.len() as u32;
-        self.scene.objects.push(Object {
-            name: object_name.to_string(),
-            material,
-        });
         let (first_vertex, smooth_vertices) =
             self.append_vertices(&vertices, placement, primitive_label)?;
-        for corners in triangles {
+        let first_triangle = self.scene.triangles.len() as u32;
+        for corners in &triangles {
             let corners = if placement.mirrored {
                 [corners[0], corners[2], corners[1]]
             } else {
-                corners
+                *corners
             };
-            self.append_triangle(corners, first_vertex, &smooth_vertices, material, object);
+            self.append_triangle(corners, first_vertex, &smooth_vertices, material);
         }
+        self.scene.objects.push(Object {
+            name: object_name.to_string(),
+            material,
+            triangles: first_triangle..self.scene.triangles.len() as u32,
+        });
         Ok(())
     }
 
@@ -1578,16 +1582,17 @@ impl<'f> SceneBuilder<'f> {
         Ok(Some(normals))
     }
 
-    /// `TEXCOORD_<set>` as floats (normalized integers divided out); zeros when absent.
+    /// `TEXCOORD_<set>` as floats (normalized integers divided out); `None`
+    /// when absent or unreadable (the scene then reads zeros).
     fn read_tex_coords(
         &mut self,
         primitive: &gltf::Primitive,
         set: u32,
         count: usize,
         primitive_label: &str,
-    ) -> Loaded<Vec<Vec2>> {
+    ) -> Loaded<Option<Vec<Vec2>>> {
         let Some(accessor) = primitive.get(&Semantic::TexCoords(set)) else {
-            return Ok(vec![Vec2::ZERO; count]);
+            return Ok(None);
         };
         let name = format!("TEXCOORD_{set}");
         check_attribute_count(&accessor, count, &name, primitive_label)?;
@@ -1612,11 +1617,11 @@ impl<'f> SceneBuilder<'f> {
                     accessor.index(),
                     layout_name(&accessor)
                 ));
-                vec![Vec2::ZERO; count]
+                return Ok(None);
             }
         };
         check_finite(&uvs, |uv| uv.is_finite(), &name, primitive_label)?;
-        Ok(uvs)
+        Ok(Some(uvs))
     }
 
     /// The primitive's indices (0, 1, 2, … without an index accessor), each
@@ -1686,24 +1691,24 @@ impl<'f> SceneBuilder<'f> {
             }
             self.scene.positions.push(world);
         }
-        let mut smooth = vec![false; vertices.positions.len()];
-        match &vertices.normals {
-            Some(normals) => {
-                for (i, &local) in normals.iter().enumerate() {
-                    let world = (placement.normal_matrix * local).normalize_or_zero();
-                    smooth[i] = world != Vec3::ZERO;
-                    self.scene
-                        .normals
-                        .push(if smooth[i] { world } else { Vec3::Z });
-                }
-            }
-            None => self
-                .scene
-                .normals
-                .extend(std::iter::repeat_n(Vec3::Z, vertices.positions.len())),
-        }
-        self.scene.uv0.extend_from_slice(&vertices.uv0);
-        self.scene.uv1.extend_from_slice(&vertices.uv1);
+        let count = vertices.positions.len();
+        // a normal that vanishes (zero, or crushed by the transform) is no
+        // shading normal: its vertex is not smooth and stores +Z
+        let mut smooth = vec![false; count];
+        let world_normals: Option<Vec<Vec3>> = vertices.normals.as_ref().map(|normals| {
+            let world = |(i, &local): (usize, &Vec3)| {
+                let n = (placement.normal_matrix * local).normalize_or_zero();
+                smooth[i] = n != Vec3::ZERO;
+                if smooth[i] { n } else { Vec3::Z }
+            };
+            normals.iter().enumerate().map(world).collect()
+        });
+        let scene = &mut self.scene;
+        let normals = world_normals.as_deref();
+        append_vertex_attribute(&mut scene.normals, normals, first, count, Vec3::Z);
+        let (uv0, uv1) = (vertices.uv0.as_deref(), vertices.uv1.as_deref());
+        append_vertex_attribute(&mut scene.uv0, uv0, first, count, Vec2::ZERO);
+        append_vertex_attribute(&mut scene.uv1, uv1, first, count, Vec2::ZERO);
         Ok((first as u32, smooth))
     }
 
@@ -1713,7 +1718,6 @@ impl<'f> SceneBuilder<'f> {
         first_vertex: u32,
         smooth_vertices: &[bool],
         material: u32,
-        object: u32,
     ) {
         let vertices = corners.map(|corner| first_vertex + corner);
         let [a, b, c] = vertices.map(|v| self.scene.positions[v as usize]);
@@ -1723,12 +1727,14 @@ impl<'f> SceneBuilder<'f> {
         let has_normals = corners
             .iter()
             .all(|&corner| smooth_vertices[corner as usize]);
-        let normals = vertices.map(|v| self.scene.normals[v as usize]);
+        let smooth = has_normals && {
+            let normals = vertices.map(|v| self.scene.normals[v as usize]);
+            !normals_are_the_face_normal(a, b, c, normals)
+        };
         self.scene.triangles.push(Triangle {
             vertices,
             material,
-            object,
-            smooth: has_normals && !normals_are_the_face_normal(a, b, c, normals),
+            smooth,
         });
     }
 

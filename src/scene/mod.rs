@@ -28,10 +28,13 @@ pub struct Scene {
     /// A name for messages (file name, or the built-in scene's name).
     pub name: String,
     pub positions: Vec<Vec3>,
-    /// Per-vertex shading normals in world space, unit length. Same length
-    /// as `positions`; only read for triangles with `smooth == true`.
+    /// Per-vertex shading normals in world space, unit length; only read for
+    /// triangles with `smooth == true`. Like the UV sets, either empty (no
+    /// vertex has one, so nothing is stored) or one per vertex, see
+    /// [`append_vertex_attribute`].
     pub normals: Vec<Vec3>,
-    /// Texture coordinates, set 0 and set 1 (zero where the file had none).
+    /// Texture coordinates, set 0 and set 1: empty, or one per vertex (zero
+    /// where the file had none). [`Scene::uv`] reads them.
     pub uv0: Vec<Vec2>,
     pub uv1: Vec<Vec2>,
     pub triangles: Vec<Triangle>,
@@ -51,7 +54,6 @@ pub struct Scene {
 pub struct Triangle {
     pub vertices: [u32; 3],
     pub material: u32,
-    pub object: u32,
     /// Interpolate the vertex normals; false means use the geometric normal.
     pub smooth: bool,
 }
@@ -61,6 +63,9 @@ pub struct Triangle {
 pub struct Object {
     pub name: String,
     pub material: u32,
+    /// Its scene triangles, which are contiguous: the object of a triangle
+    /// is found by [`Scene::object_of_triangle`], not stored with each one.
+    pub triangles: std::ops::Range<u32>,
 }
 
 /// A glTF metallic-roughness material, as authored. [`Material::brdf_model`]
@@ -246,6 +251,35 @@ impl Scene {
         bounds
     }
 
+    /// The object scene triangle `triangle` belongs to.
+    pub fn object_of_triangle(&self, triangle: u32) -> u32 {
+        self.objects
+            .partition_point(|o| o.triangles.end <= triangle) as u32
+    }
+
+    /// The scene triangles of `object`.
+    pub fn triangles_of_object(&self, object: u32) -> &[Triangle] {
+        let range = &self.objects[object as usize].triangles;
+        &self.triangles[range.start as usize..range.end as usize]
+    }
+
+    /// Texture coordinates of set `set` (0 or 1; higher sets read set 1) at
+    /// `vertex`: zero where the scene stores none.
+    pub fn uv(&self, set: u32, vertex: u32) -> Vec2 {
+        let column = if set == 0 { &self.uv0 } else { &self.uv1 };
+        column.get(vertex as usize).copied().unwrap_or(Vec2::ZERO)
+    }
+
+    /// Gives back the spare capacity of the geometry arrays once a scene is
+    /// complete (they grew by doubling while it was read).
+    pub fn shrink_to_fit(&mut self) {
+        self.positions.shrink_to_fit();
+        self.normals.shrink_to_fit();
+        self.uv0.shrink_to_fit();
+        self.uv1.shrink_to_fit();
+        self.triangles.shrink_to_fit();
+    }
+
     /// The camera a render uses: the scene's first, or one framing the bounds.
     pub fn default_camera(&self) -> Camera {
         self.cameras
@@ -270,22 +304,47 @@ impl Scene {
         triangles: &[[u32; 3]],
     ) -> u32 {
         let object = self.objects.len() as u32;
+        let first = self.triangles.len() as u32;
         self.objects.push(Object {
             name: name.into(),
             material,
+            triangles: first..first + triangles.len() as u32,
         });
         let base = self.positions.len() as u32;
         self.positions.extend_from_slice(positions);
-        self.normals.extend(positions.iter().map(|_| Vec3::Z));
-        self.uv0.extend(positions.iter().map(|_| Vec2::ZERO));
-        self.uv1.extend(positions.iter().map(|_| Vec2::ZERO));
+        let (before, count) = (base as usize, positions.len());
+        append_vertex_attribute(&mut self.normals, None, before, count, Vec3::Z);
+        append_vertex_attribute(&mut self.uv0, None, before, count, Vec2::ZERO);
+        append_vertex_attribute(&mut self.uv1, None, before, count, Vec2::ZERO);
         self.triangles.extend(triangles.iter().map(|t| Triangle {
             vertices: [t[0] + base, t[1] + base, t[2] + base],
             material,
-            object,
             smooth: false,
         }));
         object
+    }
+}
+
+/// Appends to a per-vertex attribute `column` the values of `count` vertices
+/// just added after the first `before`. A column stays empty until some
+/// vertex has a value, so a scene without normals or UVs stores none; from
+/// then on it holds one value per vertex, `default` for the vertices that
+/// had none.
+pub fn append_vertex_attribute<T: Copy>(
+    column: &mut Vec<T>,
+    values: Option<&[T]>,
+    before: usize,
+    count: usize,
+    default: T,
+) {
+    match values {
+        Some(values) => {
+            debug_assert_eq!(values.len(), count);
+            column.resize(before, default);
+            column.extend_from_slice(values);
+        }
+        None if column.is_empty() => {}
+        None => column.resize(before + count, default),
     }
 }
 
@@ -303,5 +362,39 @@ pub fn framing_camera(bounds: Bounds) -> Camera {
         name: "framing".into(),
         world_from_camera: Affine3A::from_translation(center + Vec3::Z * distance),
         projection: Projection::Perspective { yfov },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_vertex_attribute_is_stored_for_every_vertex_or_none() {
+        let mut column: Vec<u8> = Vec::new();
+        // two meshes without the attribute: nothing stored
+        append_vertex_attribute(&mut column, None, 0, 3, 0);
+        append_vertex_attribute(&mut column, None, 3, 2, 0);
+        assert!(column.is_empty());
+        // the first mesh with it back-fills the vertices before with the default
+        append_vertex_attribute(&mut column, Some(&[7, 8]), 5, 2, 0);
+        assert_eq!(column, [0, 0, 0, 0, 0, 7, 8]);
+        // and from then on a mesh without it is padded
+        append_vertex_attribute(&mut column, None, 7, 1, 0);
+        assert_eq!(column, [0, 0, 0, 0, 0, 7, 8, 0]);
+    }
+
+    #[test]
+    fn each_triangle_finds_its_object() {
+        let mut scene = Scene::default();
+        let grey = scene.add_material(Material::lambert("grey", Vec3::ONE));
+        let corners = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::ONE];
+        let pair = [[0, 1, 2], [1, 3, 2]];
+        scene.add_mesh("a", grey, &corners, &pair);
+        scene.add_mesh("b", grey, &corners, &pair[..1]);
+        scene.add_mesh("c", grey, &corners, &pair);
+        let objects: Vec<u32> = (0..5).map(|t| scene.object_of_triangle(t)).collect();
+        assert_eq!(objects, [0, 0, 1, 2, 2]);
+        assert_eq!(scene.triangles_of_object(1), &scene.triangles[2..3]);
     }
 }
