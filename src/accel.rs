@@ -21,11 +21,11 @@
 //! planes are exact; the error comes from the ray's inverse direction and
 //! the two fused steps), so a box the ray touches is never skipped.
 
-use std::time::Duration;
-
 use glam::{UVec2, Vec3, Vec3A, Vec4};
+use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
 use obvhs::cwbvh::node::{CwBvhNode, extract_byte64};
-use obvhs::{BvhBuildParams, cwbvh::CwBvh, cwbvh::builder::build_cwbvh_from_tris};
+use obvhs::cwbvh::{CwBvh, bvh2_to_cwbvh::bvh2_to_cwbvh};
+use obvhs::{BvhBuildParams, ploc::PlocBuilder};
 
 use crate::geometry::{Ray, ShearedRay, TriangleHit, gamma};
 use crate::scene::Scene;
@@ -95,22 +95,33 @@ const EMITTER_SHARE_FOR_OWN_BVH: f32 = 0.25;
 impl Accel {
     /// Builds the BVH over the scene triangles for which `keep` is true, plus `spheres`.
     pub fn build(scene: &Scene, keep: impl Fn(u32) -> bool, spheres: Vec<Sphere>) -> Self {
-        let kept: Vec<u32> = (0..scene.triangles.len() as u32)
-            .filter(|&i| keep(i))
-            .collect();
+        let all = 0..scene.triangles.len() as u32;
+        // the usual case keeps every triangle: no list of them is made
+        let kept: Option<Vec<u32>> =
+            (!all.clone().all(&keep)).then(|| all.filter(|&i| keep(i)).collect());
         let is_emissive = |i: u32| {
             let material = scene.triangles[i as usize].material as usize;
             scene.materials[material].is_emissive()
         };
-        let triangles = TriangleBvh::build(scene, &kept);
+        let triangles = match &kept {
+            Some(kept) => TriangleBvh::build(scene, kept.len(), |i| kept[i]),
+            None => TriangleBvh::build(scene, scene.triangles.len(), |i| i as u32),
+        };
         let emissive: Vec<bool> = triangles
             .scene_triangle
             .iter()
             .map(|&i| is_emissive(i))
             .collect();
-        let emitter_ids: Vec<u32> = kept.iter().copied().filter(|&i| is_emissive(i)).collect();
-        let few = emitter_ids.len() as f32 <= EMITTER_SHARE_FOR_OWN_BVH * kept.len() as f32;
-        let emitters = few.then(|| TriangleBvh::build(scene, &emitter_ids));
+        let emitter_ids: Vec<u32> = match &kept {
+            Some(kept) => kept.iter().copied().filter(|&i| is_emissive(i)).collect(),
+            None => (0..scene.triangles.len() as u32)
+                .filter(|&i| is_emissive(i))
+                .collect(),
+        };
+        let kept_count = triangles.scene_triangle.len();
+        let few = emitter_ids.len() as f32 <= EMITTER_SHARE_FOR_OWN_BVH * kept_count as f32;
+        let emitters =
+            few.then(|| TriangleBvh::build(scene, emitter_ids.len(), |i| emitter_ids[i]));
         Self {
             triangles,
             emitters,
@@ -233,28 +244,25 @@ struct TriangleBvh {
 }
 
 impl TriangleBvh {
-    /// The BVH over scene triangles `ids`.
-    fn build(scene: &Scene, ids: &[u32]) -> Self {
-        if ids.is_empty() {
+    /// The BVH over the `count` scene triangles `id(0)`, …, `id(count − 1)`.
+    fn build(scene: &Scene, count: usize, id: impl Fn(usize) -> u32) -> Self {
+        if count == 0 {
             return Self::default();
         }
         let corners = |i: u32| {
             let t = &scene.triangles[i as usize];
             t.vertices.map(|v| Vec3A::from(scene.positions[v as usize]))
         };
-        let tris: Vec<obvhs::triangle::Triangle> = ids
-            .iter()
-            .map(|&i| {
-                let [v0, v1, v2] = corners(i);
-                obvhs::triangle::Triangle { v0, v1, v2 }
-            })
-            .collect();
-        let bvh = build_cwbvh_from_tris(&tris, build_params(ids.len()), &mut Duration::default());
-        let scene_triangle: Vec<u32> = bvh
-            .primitive_indices
-            .iter()
-            .map(|&p| ids[p as usize])
-            .collect();
+        let mut bvh = build_cwbvh((0..count).map(|i| {
+            let [v0, v1, v2] = corners(id(i));
+            obvhs::triangle::Triangle { v0, v1, v2 }
+        }));
+        // the BVH's slots hold the `i` of `id(i)`: turned in place into
+        // scene triangles, they replace the BVH's own copy
+        let mut scene_triangle = std::mem::take(&mut bvh.primitive_indices);
+        for slot in &mut scene_triangle {
+            *slot = id(*slot as usize);
+        }
         let vertices: Vec<[Vec3A; 3]> = scene_triangle.iter().map(|&i| corners(i)).collect();
         let corner_points = vertices.iter().flatten();
         let bounds = [
@@ -362,6 +370,33 @@ const THOROUGH_BUILD_MAX_TRIANGLES: usize = 16_384;
 /// The build parameters for `triangles` triangles. No spatial pre-splits:
 /// their clipped boxes are rounded, not conservative, and a ray through a
 /// split line could miss both halves.
+/// obvhs's CWBVH build (PLOC, reinsertion, conversion to 8-wide nodes),
+/// done in steps so that each step's inputs are freed before the next
+/// allocates: the triangles once the leaves hold their boxes, the binary
+/// BVH's parent links before the conversion (it reads only nodes and
+/// primitive indices), and the converter's spare node capacity (sized for
+/// one node per triangle, about eight times what it uses) at the end.
+fn build_cwbvh(triangles: impl Iterator<Item = obvhs::triangle::Triangle>) -> CwBvh {
+    let triangles: Vec<obvhs::triangle::Triangle> = triangles.collect();
+    let count = triangles.len();
+    let params = build_params(count);
+    let mut bvh2 = PlocBuilder::new().build(
+        params.ploc_search_distance,
+        &triangles,
+        (0..count as u32).collect(),
+        params.sort_precision,
+        params.search_depth_threshold,
+    );
+    drop(triangles);
+    ReinsertionOptimizer::default().run(&mut bvh2, params.reinsertion_batch_ratio, None);
+    bvh2.parents = Vec::new();
+    bvh2.primitives_to_nodes = Vec::new();
+    let mut cwbvh = bvh2_to_cwbvh(&bvh2, params.max_prims_per_leaf.clamp(1, 3), true, false);
+    drop(bvh2);
+    cwbvh.nodes.shrink_to_fit();
+    cwbvh
+}
+
 fn build_params(triangles: usize) -> BvhBuildParams {
     let params = if triangles <= THOROUGH_BUILD_MAX_TRIANGLES {
         BvhBuildParams::very_slow_build()
