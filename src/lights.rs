@@ -41,14 +41,14 @@ use std::f32::consts::PI;
 
 use crate::accel::{Sphere, intersect_sphere};
 use crate::color::luminance;
-use crate::geometry::{Frame, Ray, offset_ray_origin};
+use crate::geometry::{Frame, Ray, interpolate_point, offset_ray_origin};
 use crate::sampling::{
     AliasTable, spherical_triangle, spherical_triangle_area, uniform_cone, uniform_cone_pdf,
     uniform_triangle,
 };
 use crate::scene::{NO_ID, PunctualKind, Scene};
 use crate::settings::{LightMode, LightSampling, LightSelection, RenderSettings};
-use crate::shading::SurfacePoint;
+use crate::shading::{SurfacePoint, geometric_normal};
 
 /// Shadow rays stop this fraction short of the light point (pbrt's ShadowEpsilon):
 /// both ends are already offset off their surfaces, this only absorbs the
@@ -82,8 +82,21 @@ impl Cone {
 /// One light source of a render.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Light {
-    /// An emissive scene triangle.
-    Triangle { triangle: u32, area: f32 },
+    /// An emissive scene triangle, with what a light sample on it reads
+    /// copied from the scene: a sample then costs no triangle, vertex or
+    /// material lookups and no normal.
+    Triangle {
+        triangle: u32,
+        area: f32,
+        /// Its corners, as the scene stores them.
+        corners: [Vec3; 3],
+        /// Unit geometric normal of its front face.
+        normal: Vec3,
+        /// Emitted radiance, when it is the same all over the triangle (no
+        /// emission texture); else it is looked up per point.
+        uniform_radiance: Option<Vec3>,
+        double_sided: bool,
+    },
     /// A point light of intensity I (W/sr), optionally restricted to a cone.
     Point {
         position: Vec3,
@@ -226,9 +239,18 @@ impl LightTable {
             }
             let area = triangle_area(scene, i as u32);
             if area > 0.0 {
+                let material = &scene.materials[tri.material as usize];
+                let corners = tri.vertices.map(|v| scene.positions[v as usize]);
                 let light = self.push(Light::Triangle {
                     triangle: i as u32,
                     area,
+                    corners,
+                    normal: geometric_normal(corners[0], corners[1], corners[2]),
+                    uniform_radiance: material
+                        .emission_texture
+                        .is_none()
+                        .then_some(material.emission),
+                    double_sided: material.double_sided,
                 });
                 // in increasing triangle order: the list stays sorted
                 self.triangle_light.push((i as u32, light));
@@ -401,10 +423,13 @@ impl LightTable {
         u: Vec2,
     ) -> Option<LightSample> {
         let mut sample = match self.lights[index] {
-            Light::Triangle { triangle, area } => match self.triangle_sampling {
-                TriangleSampling::Area => sample_triangle(scene, at, triangle, area, u)?,
+            Light::Triangle { triangle, .. } => match self.triangle_sampling {
+                TriangleSampling::Area => {
+                    let light = &self.lights[index];
+                    light_point_sample(scene, at, light, uniform_triangle(u))?
+                }
                 TriangleSampling::SolidAngle => {
-                    sample_triangle_solid_angle(scene, at, triangle, area, u)?
+                    sample_triangle_solid_angle(scene, at, &self.lights[index], triangle, u)?
                 }
             },
             Light::Point {
@@ -546,43 +571,47 @@ fn triangle_area(scene: &Scene, triangle: u32) -> f32 {
     0.5 * (p1 - p0).cross(p2 - p0).length()
 }
 
-/// Uniform point on an emissive triangle, as seen from `at`.
-#[inline]
-fn sample_triangle(
-    scene: &Scene,
-    at: &SurfacePoint,
-    triangle: u32,
-    area: f32,
-    u: Vec2,
-) -> Option<LightSample> {
-    light_point_sample(scene, at, triangle, area, uniform_triangle(u))
-}
-
-/// The light that point `b` (barycentrics) of emissive triangle `triangle`
-/// (of area `area`) sends to `at`, with the shadow ray between them and the
-/// solid-angle pdf of uniform area sampling.
+/// The light that point `b` (barycentrics) of triangle light `light`
+/// sends to `at`, with the shadow ray between them and the solid-angle pdf
+/// of uniform area sampling. The point, its error bound and its normal are
+/// those [`SurfacePoint::new`] gives, computed from the light's own copy.
 #[inline(always)]
 fn light_point_sample(
     scene: &Scene,
     at: &SurfacePoint,
-    triangle: u32,
-    area: f32,
+    light: &Light,
     b: Vec3,
 ) -> Option<LightSample> {
-    let on_light = SurfacePoint::new(scene, triangle, b);
-    let to_light = on_light.p - at.p;
+    let &Light::Triangle {
+        triangle,
+        area,
+        corners: [p0, p1, p2],
+        normal,
+        uniform_radiance,
+        double_sided,
+    } = light
+    else {
+        return None;
+    };
+    let (p, p_error) = interpolate_point(b, p0, p1, p2);
+    let to_light = p - at.p;
     let distance2 = to_light.length_squared();
     if distance2 <= 0.0 {
         return None;
     }
     let wi = to_light / distance2.sqrt();
-    let radiance = on_light.emitted(scene, -wi);
-    let cos_light = on_light.ng.dot(-wi).abs();
+    let radiance = match uniform_radiance {
+        // one-sided emission faces the front only, as SurfacePoint::emitted says
+        Some(radiance) if double_sided || normal.dot(-wi) > 0.0 => radiance,
+        Some(_) => Vec3::ZERO,
+        None => SurfacePoint::new(scene, triangle, b).emitted(scene, -wi),
+    };
+    let cos_light = normal.dot(-wi).abs();
     if radiance.max_element() <= 0.0 || cos_light <= 0.0 {
         return None;
     }
     let origin = offset_ray_origin(at.p, at.p_error, at.ng, wi);
-    let target = offset_ray_origin(on_light.p, on_light.p_error, on_light.ng, -wi);
+    let target = offset_ray_origin(p, p_error, normal, -wi);
     Some(LightSample {
         wi,
         radiance,
@@ -612,13 +641,13 @@ fn directions_to_triangle(scene: &Scene, triangle: u32, from: Vec3) -> [DVec3; 3
 fn sample_triangle_solid_angle(
     scene: &Scene,
     at: &SurfacePoint,
+    light: &Light,
     triangle: u32,
-    area: f32,
     u: Vec2,
 ) -> Option<LightSample> {
     let [a, b, c] = directions_to_triangle(scene, triangle, at.p);
     if !SOLID_ANGLE_RANGE.contains(&spherical_triangle_area(a, b, c)) {
-        return sample_triangle(scene, at, triangle, area, u);
+        return light_point_sample(scene, at, light, uniform_triangle(u));
     }
     let (direction, pdf) = spherical_triangle(a, b, c, u)?;
     // the point of the triangle along the direction, as barycentrics
@@ -640,7 +669,7 @@ fn sample_triangle_solid_angle(
         (b1, b2)
     };
     let barycentrics = Vec3::new((1.0 - b1 - b2) as f32, b1 as f32, b2 as f32);
-    let mut sample = light_point_sample(scene, at, triangle, area, barycentrics)?;
+    let mut sample = light_point_sample(scene, at, light, barycentrics)?;
     sample.pdf = pdf as f32;
     Some(sample)
 }
@@ -695,7 +724,7 @@ fn sample_sphere(
 fn power(scene: &Scene, light: &Light, scene_radius: f32) -> f32 {
     let pi = PI;
     match *light {
-        Light::Triangle { triangle, area } => {
+        Light::Triangle { triangle, area, .. } => {
             let material = &scene.materials[scene.triangles[triangle as usize].material as usize];
             let texture_mean = material
                 .emission_texture

@@ -12,6 +12,13 @@ use crate::geometry::{Frame, Ray, interpolate_point, offset_ray_origin};
 use crate::scene::{BrdfModel, Material, Scene, TextureRef};
 use crate::settings::{BrdfOverride, RenderSettings};
 
+/// Unit normal of the front face of triangle (p0, p1, p2), counter-clockwise
+/// seen from the front; +Z for a degenerate triangle.
+#[inline(always)]
+pub fn geometric_normal(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
+    (p1 - p0).cross(p2 - p0).normalize_or(Vec3::Z)
+}
+
 /// A point on a scene triangle.
 #[derive(Clone, Copy, Debug)]
 pub struct SurfacePoint {
@@ -40,7 +47,7 @@ impl SurfacePoint {
             scene.positions[i2],
         );
         let (p, p_error) = interpolate_point(b, p0, p1, p2);
-        let ng = (p1 - p0).cross(p2 - p0).normalize_or(Vec3::Z);
+        let ng = geometric_normal(p0, p1, p2);
         let ns = if tri.smooth {
             let n = b.x * scene.normals[i0] + b.y * scene.normals[i1] + b.z * scene.normals[i2];
             let n = n.normalize_or(ng);

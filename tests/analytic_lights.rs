@@ -206,3 +206,58 @@ fn directional_light_gives_e_cos_theta() {
         "{measured} vs {expected}"
     );
 }
+
+/// A light whose emission is textured reads the texture at each sampled
+/// point: sampling points on the light (area) and sampling directions
+/// (hemisphere, which shades what the ray hits) agree, and both differ
+/// from the untextured light.
+#[test]
+fn a_textured_emitter_is_read_where_the_light_is_sampled() {
+    use glam::Vec2;
+    use lumiere::scene::{Texture, TextureRef};
+    use lumiere::settings::LightSampling;
+
+    let center = Vec3::new(0.0, 0.0, HEIGHT);
+    let mut scene = quad_over_plane(Material::lambert("floor", Vec3::splat(ALBEDO)), center);
+    // 2×2 texels of very different brightness, across the light's UVs
+    let texture = scene.textures.len() as u32;
+    scene.textures.push(Texture {
+        texels: [0.05, 1.0, 0.4, 0.1].map(Vec3::splat).to_vec(),
+        width: 2,
+        height: 2,
+        ..Texture::constant(Vec3::ONE)
+    });
+    let light = scene.objects[1].material as usize;
+    scene.materials[light].emission_texture = Some(TextureRef { texture, uv_set: 0 });
+    scene.uv0 = vec![Vec2::ZERO; scene.positions.len()];
+    let light_vertices = scene.positions.len() - 4;
+    for (i, uv) in [[0.0, 0.0], [0.0, 1.0], [1.0, 1.0], [1.0, 0.0]]
+        .iter()
+        .enumerate()
+    {
+        scene.uv0[light_vertices + i] = Vec2::from(*uv);
+    }
+    let estimate_with = |light_sampling| {
+        let settings = RenderSettings {
+            terms: TermSet::only(Term::L1),
+            light_sampling,
+            ..RenderSettings::default()
+        };
+        let context = RenderContext::new(scene.clone(), settings);
+        estimate(&context, ray_to_floor(0.1, 0.05), Term::L1, 200_000, 5)
+    };
+    let (area, area_error) = estimate_with(LightSampling::Area);
+    let (hemisphere, hemisphere_error) = estimate_with(LightSampling::Hemisphere);
+    let combined = (area_error.powi(2) + hemisphere_error.powi(2)).sqrt();
+    assert!(
+        (area - hemisphere).abs() < 4.0 * combined,
+        "area {area} ± {area_error}, hemisphere {hemisphere} ± {hemisphere_error}"
+    );
+    let p = Vec3::new(0.1, 0.05, 0.0);
+    let untextured = ALBEDO as f64 / std::f64::consts::PI
+        * polygon_irradiance(p, Vec3::Z, &light_corners(center), RADIANCE as f64);
+    assert!(
+        area < 0.8 * untextured,
+        "the texture (mean below 0.4) darkens the light: {area} against {untextured} untextured"
+    );
+}
