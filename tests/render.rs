@@ -368,6 +368,10 @@ fn view_and_strip_refuse_a_film_too_large_for_memory() {
             "16384",
         ],
     ] {
+        // a build without the viewer refuses `view` for that reason instead
+        if args[0] == "view" && !cfg!(feature = "gui") {
+            continue;
+        }
         let out = lumiere().args(&args).output().unwrap();
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
