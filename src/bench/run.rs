@@ -234,7 +234,7 @@ impl BenchReport {
             if let Some(g) = self.scaling.iter().find(|r| r.axis == Axis::GltfTriangles) {
                 let _ = writeln!(
                     out,
-                    "  glTF of {} triangles: load + build {:.2} s (target < 3 s){}",
+                    "  glTF of {} triangles: load + build {:.2} s (target at 10⁶ triangles: < 3 s){}",
                     g.triangles,
                     g.load_seconds + g.build_seconds,
                     g.bytes_per_triangle()
