@@ -367,15 +367,12 @@ impl TriangleBvh {
 /// against 6 s).
 const THOROUGH_BUILD_MAX_TRIANGLES: usize = 16_384;
 
-/// The build parameters for `triangles` triangles. No spatial pre-splits:
-/// their clipped boxes are rounded, not conservative, and a ray through a
-/// split line could miss both halves.
 /// obvhs's CWBVH build (PLOC, reinsertion, conversion to 8-wide nodes),
 /// done in steps so that each step's inputs are freed before the next
 /// allocates: the triangles once the leaves hold their boxes, the binary
 /// BVH's parent links before the conversion (it reads only nodes and
 /// primitive indices), and the converter's spare node capacity (sized for
-/// one node per triangle, about eight times what it uses) at the end.
+/// one node per triangle, about ten times what it uses) at the end.
 fn build_cwbvh(triangles: impl Iterator<Item = obvhs::triangle::Triangle>) -> CwBvh {
     let triangles: Vec<obvhs::triangle::Triangle> = triangles.collect();
     let count = triangles.len();
@@ -397,6 +394,9 @@ fn build_cwbvh(triangles: impl Iterator<Item = obvhs::triangle::Triangle>) -> Cw
     cwbvh
 }
 
+/// The build parameters for `triangles` triangles. No spatial pre-splits:
+/// their clipped boxes are rounded, not conservative, and a ray through a
+/// split line could miss both halves.
 fn build_params(triangles: usize) -> BvhBuildParams {
     let params = if triangles <= THOROUGH_BUILD_MAX_TRIANGLES {
         BvhBuildParams::very_slow_build()

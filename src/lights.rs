@@ -388,11 +388,6 @@ impl LightTable {
             .unwrap_or(false)
     }
 
-    /// Whether some scene triangle stopped being geometry.
-    pub fn hides_triangles(&self) -> bool {
-        !self.hidden_triangles.is_empty()
-    }
-
     /// Draws light at surface point `at` from two uniform numbers (selection, position).
     pub fn sample(
         &self,
