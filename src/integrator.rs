@@ -645,9 +645,11 @@ impl<'a> Walk<'a> {
         let context = self.context;
         let settings = &context.settings;
         let base = dim::vertex_base(vertex.index);
-        let Some((index, probability)) = context
+        let Some((index, probability, u_position)) = context
             .lights
-            .pick(stream.uniform(base + dim::LIGHT_SELECT))
+            .pick_with_position(stream.uniform2(base + dim::LIGHT_POSITION), || {
+                stream.uniform(base + dim::LIGHT_SELECT)
+            })
         else {
             return;
         };
@@ -665,7 +667,7 @@ impl<'a> Walk<'a> {
             &vertex.point,
             index,
             probability,
-            stream.uniform2(base + dim::LIGHT_POSITION),
+            u_position,
         ) else {
             return;
         };

@@ -171,6 +171,11 @@ pub enum TriangleSampling {
 /// (pbrt-v4's bounds).
 pub const SOLID_ANGLE_RANGE: std::ops::RangeInclusive<f64> = 3e-4..=6.22;
 
+/// Lights up to which one number both picks a light and places the sample
+/// on it: the choice takes log₂ n of the number's 24 bits, leaving at least
+/// 16 for the position.
+pub const SHARED_SELECTION_LIGHTS: usize = 256;
+
 /// The lights of a scene under one light mode, with their selection table.
 #[derive(Clone, Debug, Default)]
 pub struct LightTable {
@@ -388,7 +393,9 @@ impl LightTable {
             .unwrap_or(false)
     }
 
-    /// Draws light at surface point `at` from two uniform numbers (selection, position).
+    /// Draws light at surface point `at` from the position pair `u` (and,
+    /// with many lights, the selection number `u_select`), as
+    /// [`LightTable::pick_with_position`] shares them out.
     pub fn sample(
         &self,
         scene: &Scene,
@@ -396,7 +403,7 @@ impl LightTable {
         u_select: f32,
         u: Vec2,
     ) -> Option<LightSample> {
-        let (index, probability) = self.pick(u_select)?;
+        let (index, probability, u) = self.pick_with_position(u, || u_select)?;
         self.sample_light(scene, at, index, probability, u)
     }
 
@@ -404,6 +411,28 @@ impl LightTable {
     #[inline]
     pub fn pick(&self, u_select: f32) -> Option<(usize, f32)> {
         self.selection.sample(u_select)
+    }
+
+    /// Picks a light and the pair that places the sample on it, from the
+    /// pair `u`: with up to [`SHARED_SELECTION_LIGHTS`] lights, `u.x` picks
+    /// the light and, remapped, places the sample with `u.y`, so a
+    /// stratified pair stays stratified over all the emitters together
+    /// (the two triangles of a quad light share its points, instead of
+    /// splitting them by an unrelated number). With more lights the choice
+    /// would leave too few bits of `u.x`, and `u_select` picks instead.
+    #[inline(always)]
+    pub fn pick_with_position(
+        &self,
+        u: Vec2,
+        u_select: impl FnOnce() -> f32,
+    ) -> Option<(usize, f32, Vec2)> {
+        if self.lights.len() <= SHARED_SELECTION_LIGHTS {
+            let (index, probability, x) = self.selection.sample_remapped(u.x)?;
+            Some((index, probability, Vec2::new(x, u.y)))
+        } else {
+            let (index, probability) = self.pick(u_select())?;
+            Some((index, probability, u))
+        }
     }
 
     /// Draws a point or direction of light `index`, picked with probability

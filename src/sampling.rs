@@ -81,9 +81,10 @@ pub mod dim {
     pub const PIXEL: u32 = 0;
     /// Dimensions used at path vertex `vertex` start at `vertex_base(vertex)`.
     pub const PER_VERTEX: u32 = 10;
-    /// Which light a light sample picks.
+    /// Which light a light sample picks, in scenes of too many lights for
+    /// the position pair to pick it (`LightTable::pick_with_position`).
     pub const LIGHT_SELECT: u32 = 0;
-    /// Where on the light (2D).
+    /// Where on the light (2D); with few lights, also which light.
     pub const LIGHT_POSITION: u32 = 1;
     /// Lobe of a direction gathered to find lights (BRDF or hemisphere strategy).
     pub const GATHER_LOBE: u32 = 3;
@@ -561,6 +562,9 @@ pub fn balance_heuristic(pdf_a: f32, pdf_b: f32) -> f32 {
     }
 }
 
+/// The largest f32 below 1.
+const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+
 /// Walker's alias method: picks index i with probability wᵢ / Σw in O(1).
 #[derive(Clone, Debug, Default)]
 pub struct AliasTable {
@@ -615,19 +619,32 @@ impl AliasTable {
 
     /// Picks an index from one uniform number in [0, 1); returns it with its probability.
     pub fn sample(&self, u: f32) -> Option<(usize, f32)> {
+        self.sample_remapped(u)
+            .map(|(index, probability, _)| (index, probability))
+    }
+
+    /// [`AliasTable::sample`], plus `u` remapped to a fresh uniform number
+    /// in [0, 1) (pbrt-v4's `uRemapped`): `u` falls in one interval of
+    /// [0, 1) per (bin, keep or alias), and its position inside that
+    /// interval, rescaled, is uniform whichever index the interval picks.
+    /// The map is monotone on each interval, so stratified numbers stay
+    /// stratified: a second number for free, with the bits `u` had beyond
+    /// the choice (log₂ n fewer).
+    pub fn sample_remapped(&self, u: f32) -> Option<(usize, f32, f32)> {
         if self.pmf.is_empty() {
             return None;
         }
         let n = self.pmf.len();
         let scaled = u * n as f32;
         let bin = (scaled as usize).min(n - 1);
-        let frac = scaled - bin as f32;
-        let index = if frac < self.keep[bin] {
-            bin
+        let frac = (scaled - bin as f32).clamp(0.0, ONE_MINUS_EPSILON);
+        let keep = self.keep[bin];
+        let (index, remapped) = if frac < keep {
+            (bin, frac / keep)
         } else {
-            self.alias[bin] as usize
+            (self.alias[bin] as usize, (frac - keep) / (1.0 - keep))
         };
-        Some((index, self.pmf[index]))
+        Some((index, self.pmf[index], remapped.min(ONE_MINUS_EPSILON)))
     }
 
     /// Probability of picking `index`.

@@ -489,6 +489,33 @@ fn alias_table_picks_in_proportion_to_the_weights() {
     assert_fits("alias table", &chi2_test(&observed, &probabilities));
 }
 
+/// The number left over from a pick is a fresh uniform number whichever
+/// index it picked: (index, remapped in eighths) has probability pᵢ / 8.
+/// A light sample places its point with it (`LightTable::pick_with_position`).
+#[test]
+fn alias_table_remaps_the_number_it_picks_with_to_a_uniform_one() {
+    const EIGHTHS: usize = 8;
+    let weights = alias_weights();
+    let table = AliasTable::new(&weights);
+    let total: f64 = weights.iter().map(|&w| w as f64).sum();
+    let probabilities: Vec<f64> = weights
+        .iter()
+        .flat_map(|&w| [w as f64 / total / EIGHTHS as f64; EIGHTHS])
+        .collect();
+    let mut observed = vec![0u64; probabilities.len()];
+    for i in 0..WARP_SAMPLES {
+        let u = warp_input(9, i).x;
+        let (index, probability, remapped) = table.sample_remapped(u).expect("weights");
+        assert_eq!(table.sample(u), Some((index, probability)));
+        assert!((0.0..1.0).contains(&remapped), "{remapped}");
+        observed[index * EIGHTHS + (remapped * EIGHTHS as f32) as usize] += 1;
+    }
+    assert_fits(
+        "alias table's remapped number",
+        &chi2_test(&observed, &probabilities),
+    );
+}
+
 /// The tests above can fail: the same harness rejects a warp checked
 /// against another warp's density.
 #[test]
