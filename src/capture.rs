@@ -21,7 +21,6 @@ use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::sync::{Arc, Weak};
 use std::thread::JoinHandle;
 
-use crate::camera::CameraRays;
 use crate::convergence::EstimatorKey;
 use crate::film::Film;
 use crate::integrator::RenderContext;
@@ -122,7 +121,7 @@ impl ReferenceJob {
     ) -> Option<ReferenceImage> {
         let settings = &self.settings;
         let mut context = RenderContext::new(Arc::clone(&self.scene), settings.clone());
-        context.camera = CameraRays::new(&self.camera, settings.width, settings.height);
+        context.set_camera(&self.camera);
         let mut film = Film::new(settings.width, settings.height);
         render_cancellable(
             &context,

@@ -76,7 +76,7 @@ use crate::sampling::{
     SampleStream, UNIFORM_HEMISPHERE_PDF, balance_heuristic, cosine_hemisphere,
     cosine_hemisphere_pdf, dim, power_heuristic, uniform_hemisphere,
 };
-use crate::scene::Scene;
+use crate::scene::{Camera, Scene};
 use crate::settings::{
     IndirectSampling, LightSampling, MisHeuristic, RenderSettings, Term, TermSet,
 };
@@ -246,6 +246,19 @@ pub enum SegmentKind {
     },
 }
 
+/// What the continuations of one pilot sample brought (`RenderContext::pilot_sample`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContinuationSplit {
+    /// The radiance of each of the two continuations, summed over the
+    /// terms and unweighted (what it would bring alone, M = 1).
+    pub continuations: [Vec3; 2],
+    /// `RayCounts::total` once the first vertex's light samples are traced,
+    /// then once the continuations are: the rays of each part, by difference
+    /// with the count before the sample.
+    pub first_rays: u64,
+    pub continuation_rays: u64,
+}
+
 /// Everything a sample needs: the scene, its acceleration structure, its
 /// lights and the settings they were built for.
 pub struct RenderContext {
@@ -254,6 +267,9 @@ pub struct RenderContext {
     pub lights: LightTable,
     pub settings: RenderSettings,
     pub camera: CameraRays,
+    /// Continuations per first hit the samples take: `settings.indirect_samples`,
+    /// or the pilot's choice with `settings.auto_indirect_samples` (`splitting`).
+    pub indirect_samples: u32,
 }
 
 impl RenderContext {
@@ -263,13 +279,44 @@ impl RenderContext {
         let lights = LightTable::build(&scene, &settings);
         let accel = Accel::build(&scene, |t| !lights.is_hidden(t), lights.spheres.clone());
         let camera = CameraRays::new(&scene.default_camera(), settings.width, settings.height);
-        Self {
+        let mut context = Self {
             scene,
             accel,
             lights,
+            indirect_samples: settings.indirect_samples.max(1),
             settings,
             camera,
+        };
+        if context.settings.auto_indirect_samples {
+            context.indirect_samples = crate::splitting::choose_indirect_samples(&context).count;
         }
+        context
+    }
+
+    /// Renders through `camera` instead of the scene's default one (and,
+    /// with `auto_indirect_samples`, chooses the continuations again: the
+    /// view decides where the noise is).
+    pub fn set_camera(&mut self, camera: &Camera) {
+        self.camera = CameraRays::new(camera, self.settings.width, self.settings.height);
+        if self.settings.auto_indirect_samples {
+            self.indirect_samples = crate::splitting::choose_indirect_samples(self).count;
+        }
+    }
+
+    /// One sample of pixel (`x`, `y`) with two continuations at the first
+    /// hit, whatever the settings say, and what each continuation brought:
+    /// the splitting pilot's measurement.
+    pub fn pilot_sample(
+        &self,
+        x: u32,
+        y: u32,
+        stream: &SampleStream,
+        counts: &mut RayCounts,
+    ) -> (TermRadiance, ContinuationSplit) {
+        let ray = self.camera.generate(x, y, stream.uniform2(dim::PIXEL));
+        let mut split = ContinuationSplit::default();
+        let radiance = Walk::new(self, counts, None).split_path(ray, stream, 2, Some(&mut split));
+        (guard_sample(radiance, counts), split)
     }
 
     /// One sample of pixel (`x`, `y`): its radiance per term.
@@ -431,22 +478,52 @@ impl<'a> Walk<'a> {
 
     /// The whole sample: the camera segment, then the first vertex and its
     /// `indirect_samples` continuations.
-    fn camera_path(mut self, ray: Ray, stream: &SampleStream) -> TermRadiance {
+    fn camera_path(self, ray: Ray, stream: &SampleStream) -> TermRadiance {
+        let splits = self.context.indirect_samples;
+        self.split_path(ray, stream, splits, None)
+    }
+
+    /// [`Walk::camera_path`] with `splits` continuations at the first hit,
+    /// telling `split` (if given) what each continuation brought.
+    #[inline(always)]
+    fn split_path(
+        mut self,
+        ray: Ray,
+        stream: &SampleStream,
+        splits: u32,
+        mut split: Option<&mut ContinuationSplit>,
+    ) -> TermRadiance {
         self.counts.camera += 1;
         self.counts.per_term[lowest_selected(self.terms, 0)] += 1;
         let first = self.follow(ray, 0, Vec3::ONE, EmissionWeight::One, SegmentKind::Camera);
         let Some(first) = &first else {
+            if let Some(split) = split {
+                split.first_rays = self.counts.total();
+                split.continuation_rays = split.first_rays;
+            }
             return self.radiance;
         };
-        let splits = self.context.settings.indirect_samples.max(1);
         let gather = self.gather_plan(first, splits);
         self.direct_lighting(first, Vec3::ONE, stream, gather);
+        if let Some(split) = split.as_deref_mut() {
+            split.first_rays = self.counts.total();
+        }
         for m in 0..splits {
+            let before = self.radiance;
             let stream = stream.split(m, splits);
             let mut throughput = Vec3::splat(1.0 / splits as f32);
             if let Some(vertex) = self.continuation(first, &mut throughput, &stream, gather) {
                 self.rest_of_path(vertex, throughput, &stream);
             }
+            if let Some(split) = split.as_deref_mut()
+                && let Some(slot) = split.continuations.get_mut(m as usize)
+            {
+                let added = self.radiance.iter().zip(&before).map(|(a, b)| *a - *b);
+                *slot = added.sum::<Vec3>() * splits as f32;
+            }
+        }
+        if let Some(split) = split {
+            split.continuation_rays = self.counts.total();
         }
         self.radiance
     }

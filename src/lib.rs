@@ -49,6 +49,7 @@ pub mod scene;
 pub mod settings;
 pub mod shading;
 pub mod sidecar;
+pub mod splitting;
 pub mod stress;
 pub mod strip;
 

@@ -18,7 +18,6 @@ use lumiere::bench::peer::Peer;
 use lumiere::bench::run::{BenchConfig, run as run_bench_sections};
 use lumiere::bench::scaling::ScalingBench;
 use lumiere::bench::{Progress, Section};
-use lumiere::camera::CameraRays;
 use lumiere::export::{ImageFormat, save_image};
 use lumiere::noise::DisplayMode;
 use lumiere::path_view::PathSample;
@@ -168,9 +167,9 @@ struct SceneOptions {
     /// Light samples (shadow rays or gathered directions) per vertex.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=MAX_SAMPLES_PER_VERTEX as i64))]
     light_samples: u32,
-    /// Continuations per first hit (splitting), each weighted 1/M.
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=MAX_SAMPLES_PER_VERTEX as i64))]
-    indirect_samples: u32,
+    /// Continuations per first hit (splitting), each weighted 1/M; `auto`: the count that reaches a given relMSE soonest, chosen by a pilot [default: 1; bench: 1 and auto]
+    #[arg(long, value_parser = parse_indirect_samples)]
+    indirect_samples: Option<IndirectSamples>,
     /// How a light is picked: uniform or power.
     #[arg(long, default_value = "power")]
     light_selection: LightSelection,
@@ -294,6 +293,25 @@ struct ViewArgs {
     options: SceneOptions,
 }
 
+/// `--indirect-samples`: a count, or `auto`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum IndirectSamples {
+    Count(u32),
+    Auto,
+}
+
+fn parse_indirect_samples(s: &str) -> Result<IndirectSamples, String> {
+    if s.eq_ignore_ascii_case("auto") {
+        return Ok(IndirectSamples::Auto);
+    }
+    match s.parse::<u32>() {
+        Ok(m) if (1..=MAX_SAMPLES_PER_VERTEX).contains(&m) => Ok(IndirectSamples::Count(m)),
+        _ => Err(format!(
+            "expected `auto` or a count within 1..={MAX_SAMPLES_PER_VERTEX}"
+        )),
+    }
+}
+
 fn parse_seconds(s: &str) -> Result<f64, String> {
     let v: f64 = s
         .parse()
@@ -370,7 +388,11 @@ impl SceneOptions {
             mis_heuristic: self.mis_heuristic,
             indirect_sampling: self.indirect_sampling,
             light_samples: self.light_samples,
-            indirect_samples: self.indirect_samples,
+            indirect_samples: match self.indirect_samples {
+                Some(IndirectSamples::Count(m)) => m,
+                _ => 1,
+            },
+            auto_indirect_samples: self.indirect_samples == Some(IndirectSamples::Auto),
             light_selection: self.light_selection,
             sampler: self.sampler,
             adaptive: self.adaptive.map(|threshold| Adaptive {
@@ -476,10 +498,10 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
         .build()
         .context("cannot start the worker threads")
         .map_err(runtime)?;
-    let (film, stats) = pool.install(|| {
+    let (film, stats, indirect_samples) = pool.install(|| {
         let mut context = RenderContext::new(scene, settings.clone());
         if let Some(camera) = &job.camera {
-            context.camera = CameraRays::new(camera, settings.width, settings.height);
+            context.set_camera(camera);
         }
         let mut film = Film::new(settings.width, settings.height);
         let bar = progress_bar(job.budget);
@@ -487,7 +509,7 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
             update_bar(&bar, s, job.budget)
         });
         bar.finish_and_clear();
-        (film, stats)
+        (film, stats, context.indirect_samples)
     });
     let pixels = film.radiance(settings.terms);
     save_image(
@@ -504,6 +526,12 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
         println!(
             "adaptive: {traced:.1} samples traced per pixel on average, of {} passes",
             stats.samples_per_pixel
+        );
+    }
+    if settings.auto_indirect_samples {
+        println!(
+            "indirect samples: {} per first hit (auto)",
+            indirect_samples
         );
     }
     println!("skipped: {}", stats.rays.skipped.describe());
@@ -651,6 +679,19 @@ fn run_bench(args: &BenchArgs) -> Result<(), Failure> {
     } else {
         args.samplers.clone()
     };
+    let pairs = Estimator::all_pairs(&strategies, &samplers, settings.adaptive);
+    // each curve with one continuation, then with the pilot's choice, unless asked
+    let estimators = match args.options.indirect_samples {
+        None => Estimator::with_auto_split(&pairs),
+        Some(IndirectSamples::Auto) => pairs
+            .into_iter()
+            .map(|e| Estimator {
+                auto_split: true,
+                ..e
+            })
+            .collect(),
+        Some(IndirectSamples::Count(_)) => pairs,
+    };
     let mut triangle_counts: Vec<u64> = (4..9)
         .map(|k| 10u64.pow(k))
         .take_while(|&n| n < args.max_triangles)
@@ -661,7 +702,7 @@ fn run_bench(args: &BenchArgs) -> Result<(), Failure> {
         error: ErrorBench {
             scene: args.scene.clone(),
             settings: settings.clone(),
-            estimators: Estimator::all_pairs(&strategies, &samplers, settings.adaptive),
+            estimators,
             max_spp: args.max_spp,
             reference_spp: args.reference_spp,
             reference: args.reference.clone(),

@@ -31,6 +31,7 @@ use crate::integrator::{RayCounts, RenderContext};
 use crate::render::{PassBuffer, render_pass_cancellable};
 use crate::scene::{Camera, Scene};
 use crate::settings::{RenderSettings, Term, TermSet};
+use crate::splitting::choose_indirect_samples;
 
 /// Everything that decides what the viewer shows.
 #[derive(Clone, Debug)]
@@ -77,6 +78,9 @@ pub struct Snapshot {
     pub rays: RayCounts,
     /// Pixel samples added since the restart.
     pub pixel_samples: u64,
+    /// Continuations per first hit the samples take (the pilot's choice with
+    /// `auto_indirect_samples`).
+    pub indirect_samples: u32,
     /// No more passes will run until the request changes (paused or reached the stop).
     pub idle: bool,
     /// What the image shows (`None` before the first publication).
@@ -325,6 +329,10 @@ impl Worker {
         } else {
             // visible terms, pause or stop changed: no restart
             current.context.settings.terms = settings.terms;
+            if settings.auto_indirect_samples {
+                // the noisier part may have changed: later samples split as the pilot says
+                current.context.indirect_samples = choose_indirect_samples(&current.context).count;
+            }
             current.converged = false;
             current.request = request;
             self.publish_full();
@@ -335,7 +343,7 @@ impl Worker {
     fn start(&mut self, request: ViewRequest) {
         let settings = request.settings.clone();
         let mut context = RenderContext::new(Arc::clone(&request.scene), settings.clone());
-        context.camera = CameraRays::new(&request.camera, settings.width, settings.height);
+        context.set_camera(&request.camera);
         let film = Arc::new(Mutex::new(Film::new(settings.width, settings.height)));
         *lock(&self.shared.film) = Some(Arc::clone(&film));
         self.restarts += 1;
@@ -437,6 +445,7 @@ impl Worker {
             elapsed: current.elapsed,
             rays: current.rays,
             pixel_samples: current.pixel_samples,
+            indirect_samples: current.context.indirect_samples,
             idle,
             source: Some(ImageSource {
                 scene: Arc::downgrade(&current.request.scene),

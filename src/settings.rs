@@ -519,6 +519,11 @@ pub struct RenderSettings {
     pub light_samples: u32,
     /// Continuations per first hit (splitting), each weighted 1/M.
     pub indirect_samples: u32,
+    /// Choose the continuations per first hit for the scene instead
+    /// (`splitting`): the count that reaches a given relMSE soonest,
+    /// estimated from a pilot before the first pass; `indirect_samples` is
+    /// then ignored.
+    pub auto_indirect_samples: bool,
     pub light_selection: LightSelection,
     pub sampler: Sampler,
     /// Adaptive sampling, if on; `None` (the default): every pixel gets every pass.
@@ -546,6 +551,7 @@ impl Default for RenderSettings {
             indirect_sampling: IndirectSampling::default(),
             light_samples: 1,
             indirect_samples: 1,
+            auto_indirect_samples: false,
             light_selection: LightSelection::default(),
             sampler: Sampler::default(),
             adaptive: None,

@@ -227,7 +227,6 @@ fn corpus_files_render_or_fail_cleanly() {
 /// renders with its scene, camera, settings and sample count.
 #[test]
 fn cli_render_reproduces_a_sidecar() {
-    use lumiere::camera::CameraRays;
     use lumiere::sidecar::Sidecar;
 
     let scene = builtin::cornell();
@@ -262,7 +261,7 @@ fn cli_render_reproduces_a_sidecar() {
     assert!(String::from_utf8_lossy(&out.stdout).starts_with("3 spp"));
 
     let mut context = lumiere::RenderContext::new(scene, settings.clone());
-    context.camera = CameraRays::new(&camera, 24, 18);
+    context.set_camera(&camera);
     let mut film = lumiere::Film::new(24, 18);
     lumiere::render::render(
         &context,

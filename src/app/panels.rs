@@ -109,6 +109,11 @@ pub fn status_bar(app: &LumiereApp, ui: &mut egui::Ui, snapshot: &Snapshot) {
             ui.separator();
             ui.label(format!("{:.1} Mrays/s", snapshot.mrays_per_second()));
             ui.separator();
+            if snapshot.source.as_ref().is_some_and(|s| s.settings.auto_indirect_samples) {
+                ui.label(format!("indirect ×{} (auto)", snapshot.indirect_samples))
+                    .on_hover_text("Continuations per first hit chosen by the splitting pilot");
+                ui.separator();
+            }
             let rays = snapshot.rays;
             let per_term: Vec<String> = Term::ALL
                 .iter()
@@ -282,12 +287,19 @@ fn sampling_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                         .prefix("light samples "),
                 )
                 .on_hover_text("Light samples per vertex (shadow rays, or gathered directions), each weighted 1/N");
-                ui.add(
+                ui.add_enabled(
+                    !settings.auto_indirect_samples,
                     egui::DragValue::new(&mut settings.indirect_samples)
                         .range(1..=MAX_SAMPLES_PER_VERTEX)
                         .prefix("indirect samples "),
                 )
                 .on_hover_text("Continuations per first hit (splitting), each weighted 1/M");
+                ui.checkbox(&mut settings.auto_indirect_samples, "auto")
+                    .on_hover_text(
+                        "Let a short pilot choose the continuations per first hit that \
+                         reach a given relative error soonest (more when the indirect \
+                         light is the noisier part)",
+                    );
             });
             ui.horizontal(|ui| {
                 ui.label("pick lights");

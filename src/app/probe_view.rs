@@ -19,7 +19,6 @@ use std::time::{Duration, Instant};
 use eframe::egui;
 use egui_plot::{Bar, BarChart, Plot, VLine};
 
-use crate::camera::CameraRays;
 use crate::film::Film;
 use crate::integrator::{PathLog, RenderContext};
 use crate::path_view::{PathLine, PathSample, RayRole, path_lines, segment_luminance};
@@ -303,7 +302,7 @@ fn run_probe(
     let probe_context = cache.as_mut()?;
     let context = &mut probe_context.context;
     context.settings = settings.clone();
-    context.camera = CameraRays::new(&request.camera, settings.width, settings.height);
+    context.set_camera(&request.camera);
     let probe = trace_pixel(context, &pixel);
     Some(ProbeResult {
         probe,

@@ -211,6 +211,7 @@ pub fn shown_snapshot(app: &mut LumiereApp, a: &Arc<Snapshot>) -> Arc<Snapshot> 
         elapsed: a.elapsed,
         rays: a.rays,
         pixel_samples: a.pixel_samples,
+        indirect_samples: a.indirect_samples,
         idle: a.idle && b.idle,
         source: a.source.clone(),
     });

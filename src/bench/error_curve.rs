@@ -17,6 +17,7 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use std::time::Instant;
 
 use crate::capture::{radiance_settings, reference_seed};
 use crate::export::{load_exr, save_image};
@@ -24,6 +25,7 @@ use crate::metrics::{ReferenceImage, image_error};
 use crate::render::{Budget, render};
 use crate::scene::{Scene, builtin};
 use crate::settings::{Adaptive, DisplaySettings, LightSampling, RenderSettings, Sampler};
+use crate::splitting::choose_indirect_samples;
 use crate::{Film, RenderContext};
 
 use super::csv::ErrorRow;
@@ -42,16 +44,31 @@ pub struct Estimator {
     pub sampler: Sampler,
     /// Adaptive sampling, whose spp column counts passes (not samples traced).
     pub adaptive: Option<Adaptive>,
+    /// Continuations per first hit chosen by the splitting pilot, whose
+    /// time the curve includes; otherwise the settings' count.
+    pub auto_split: bool,
 }
 
 impl Estimator {
-    /// `strategy/sampler`, then `/adaptive T`: the CSV's `estimator` column.
+    /// `strategy/sampler`, then `/adaptive T`, then `/auto split`: the CSV's `estimator` column.
     pub fn label(&self) -> String {
-        let label = format!("{}/{}", self.light_sampling.label(), self.sampler.label());
-        match &self.adaptive {
-            Some(adaptive) => format!("{label}/adaptive {}", adaptive.threshold),
-            None => label,
+        let mut label = format!("{}/{}", self.light_sampling.label(), self.sampler.label());
+        if let Some(adaptive) = &self.adaptive {
+            label += &format!("/adaptive {}", adaptive.threshold);
         }
+        if self.auto_split {
+            label += "/auto split";
+        }
+        label
+    }
+
+    /// Each of `estimators` with the settings' continuations, then with
+    /// the pilot's choice.
+    pub fn with_auto_split(estimators: &[Estimator]) -> Vec<Estimator> {
+        estimators
+            .iter()
+            .flat_map(|&e| [false, true].map(|auto_split| Estimator { auto_split, ..e }))
+            .collect()
     }
 
     /// Every strategy with every sampler; each twice with `adaptive`, uniform then adaptive.
@@ -70,6 +87,7 @@ impl Estimator {
                         light_sampling,
                         sampler,
                         adaptive,
+                        auto_split: false,
                     })
                 })
             })
@@ -298,11 +316,22 @@ pub fn measure_curves(
         settings.light_sampling = estimator.light_sampling;
         settings.sampler = estimator.sampler;
         settings.adaptive = estimator.adaptive;
-        let context = RenderContext::new(scene.clone(), settings.clone());
-        let mut film = Film::new(settings.width, settings.height);
+        settings.auto_indirect_samples = false;
+        let mut context = RenderContext::new(scene.clone(), settings.clone());
         let (mut done, mut seconds) = (0, 0.0);
+        let mut label = estimator.label();
+        if estimator.auto_split {
+            progress.message(&format!("error: {label}, pilot"));
+            // the pilot is part of the render: its time counts
+            let start = Instant::now();
+            let choice = choose_indirect_samples(&context);
+            seconds += start.elapsed().as_secs_f64();
+            context.indirect_samples = choice.count;
+            label += &format!(" ×{}", choice.count);
+        }
+        let mut film = Film::new(settings.width, settings.height);
         for &spp in &counts {
-            progress.message(&format!("error: {} at {spp} spp", estimator.label()));
+            progress.message(&format!("error: {label} at {spp} spp"));
             let stats = render(&context, &mut film, Budget::Samples(spp - done), |_| {});
             done = spp;
             seconds += stats.elapsed.as_secs_f64();
@@ -311,7 +340,7 @@ pub fn measure_curves(
                 .expect("film and reference have the same size");
             rows.push(ErrorRow {
                 renderer: LUMIERE.into(),
-                estimator: estimator.label(),
+                estimator: label.clone(),
                 spp,
                 seconds,
                 rmse: error.rmse,

@@ -1,0 +1,156 @@
+//! The splitting pilot (`--indirect-samples auto`): it measures where the
+//! noise is, splits when the continuations are the noisier part, never
+//! when they bring nothing, and chooses the same whatever the threads.
+
+mod common;
+
+use std::process::Command;
+use std::sync::Arc;
+
+use common::small;
+use glam::Vec3;
+use lumiere::integrator::RenderContext;
+use lumiere::scene::builtin;
+use lumiere::scene::{Camera, Material, Projection, Scene};
+use lumiere::settings::Sampler;
+use lumiere::splitting::{SplitChoice, choose_indirect_samples};
+use lumiere::{RenderSettings, TermSet};
+
+fn auto(settings: RenderSettings) -> RenderSettings {
+    RenderSettings {
+        auto_indirect_samples: true,
+        ..settings
+    }
+}
+
+fn choice(scene: Scene, settings: RenderSettings) -> SplitChoice {
+    choose_indirect_samples(&RenderContext::new(scene, settings))
+}
+
+/// The Cornell box's L2 is most of its noise (96 % of the relMSE at 64 spp):
+/// the pilot must find the continuations the noisier part and split them.
+#[test]
+fn the_cornell_box_splits_its_continuations() {
+    let settings = small(64, 48, TermSet::COURSE);
+    let independent = choice(builtin::cornell(), settings.clone());
+    assert!(
+        independent.within > 2.0 * independent.between,
+        "continuation noise {} against first-vertex noise {}",
+        independent.within,
+        independent.between
+    );
+    assert!(independent.first_rays > 1.0 && independent.continuation_rays > 1.0);
+    assert!(independent.count >= 2, "{independent:?}");
+    let sobol = choice(
+        builtin::cornell(),
+        RenderSettings {
+            sampler: Sampler::Sobol,
+            ..settings
+        },
+    );
+    // the same pilot (independent numbers), rounded up for the Sobol points
+    assert_eq!(sobol.optimum, independent.optimum);
+    assert!(sobol.count >= independent.count);
+
+    // and the context built for auto takes it
+    let context = RenderContext::new(builtin::cornell(), auto(small(64, 48, TermSet::COURSE)));
+    assert_eq!(context.indirect_samples, independent.count);
+}
+
+/// Without L2 no continuation is split, and the pilot does not run.
+#[test]
+fn direct_lighting_alone_is_not_split() {
+    let l0_l1: TermSet = "L0,L1".parse().expect("terms");
+    let c = choice(builtin::cornell(), small(64, 48, l0_l1));
+    assert_eq!(c.count, 1);
+    assert_eq!(c.continuation_rays, 0.0);
+}
+
+/// A floor under a light and nothing else: a continuation from the floor
+/// finds only the light (weighted 0, the light samples count it) or the
+/// sky, so it brings exactly nothing and must not be split, although it
+/// is traced.
+#[test]
+fn continuations_that_bring_nothing_are_not_split() {
+    let mut scene = Scene::default();
+    let floor = scene.add_material(Material::lambert("floor", Vec3::splat(0.5)));
+    let s = 5.0;
+    let plane = [
+        Vec3::new(-s, -s, 0.0),
+        Vec3::new(s, -s, 0.0),
+        Vec3::new(s, s, 0.0),
+        Vec3::new(-s, s, 0.0),
+    ];
+    scene.add_mesh("floor", floor, &plane, &[[0, 1, 2], [0, 2, 3]]);
+    let light = scene.add_material(Material::emitter("light", Vec3::splat(4.0)));
+    let h = 0.5;
+    let square = [
+        Vec3::new(-h, -h, 2.0),
+        Vec3::new(-h, h, 2.0),
+        Vec3::new(h, h, 2.0),
+        Vec3::new(h, -h, 2.0),
+    ];
+    scene.add_mesh("light", light, &square, &[[0, 1, 2], [0, 2, 3]]);
+    // looking straight down at the floor from below the light
+    scene.cameras.push(Camera {
+        name: "down".into(),
+        world_from_camera: glam::Affine3A::from_translation(Vec3::new(0.0, 0.0, 1.5)),
+        projection: Projection::Perspective { yfov: 1.0 },
+    });
+    let c = choice(scene, small(32, 32, TermSet::COURSE));
+    assert!(c.continuation_rays > 0.5, "{c:?}");
+    assert!(c.between > 0.0, "{c:?}");
+    assert_eq!(c.within, 0.0, "{c:?}");
+    assert_eq!(c.count, 1);
+}
+
+/// The choice is a function of the scene, the settings and the seed.
+#[test]
+fn the_choice_does_not_depend_on_the_thread_count() {
+    let settings = small(64, 48, TermSet::ALL);
+    let context = Arc::new(RenderContext::new(builtin::cornell(), settings));
+    let with_threads = |n| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .expect("pool");
+        pool.install(|| choose_indirect_samples(&context))
+    };
+    let one = with_threads(1);
+    assert_eq!(one, with_threads(2));
+    assert_eq!(one, with_threads(3));
+    assert!(one.count >= 1);
+}
+
+/// `lumiere render --indirect-samples auto` says what it chose; a count of 0 is refused.
+#[test]
+fn the_command_line_takes_auto() {
+    let out_dir = std::env::temp_dir().join(format!("lumiere-split-{}", std::process::id()));
+    std::fs::create_dir_all(&out_dir).expect("temp dir");
+    let output = out_dir.join("auto.png");
+    let run = |count: &str| {
+        Command::new(env!("CARGO_BIN_EXE_lumiere"))
+            .args([
+                "render", "cornell", "--width", "32", "--height", "24", "--spp", "2",
+            ])
+            .args(["--indirect-samples", count, "-o"])
+            .arg(&output)
+            .output()
+            .expect("lumiere runs")
+    };
+    let auto = run("auto");
+    let stdout = String::from_utf8_lossy(&auto.stdout);
+    assert!(
+        auto.status.success(),
+        "{}",
+        String::from_utf8_lossy(&auto.stderr)
+    );
+    assert!(
+        stdout.contains("indirect samples: ") && stdout.contains("per first hit (auto)"),
+        "{stdout}"
+    );
+    let zero = run("0");
+    assert_eq!(zero.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&zero.stderr).contains("--indirect-samples"));
+    let _ = std::fs::remove_dir_all(&out_dir);
+}
