@@ -135,15 +135,23 @@ impl BenchReport {
                 out,
                 "error against time (time to reach relMSE ≤ τ, log-log interpolation)"
             );
+            // as wide as the longest label ("mis/independent/auto split ×2")
+            let width = self
+                .curves
+                .iter()
+                .map(|c| c.estimator.chars().count())
+                .max()
+                .unwrap_or(0)
+                .max(24);
             let _ = writeln!(
                 out,
-                "  {:<10} {:<24} {:>14} {:>14}   last point",
+                "  {:<10} {:<width$} {:>14} {:>14}   last point",
                 "renderer", "estimator", "τ = 1e-2", "τ = 1e-3"
             );
             for c in &self.curves {
                 let _ = writeln!(
                     out,
-                    "  {:<10} {:<24} {:>14} {:>14}   {} spp, relMSE {:.2e}",
+                    "  {:<10} {:<width$} {:>14} {:>14}   {} spp, relMSE {:.2e}",
                     c.renderer,
                     c.estimator,
                     seconds(c.seconds_to[0]),
