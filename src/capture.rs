@@ -120,8 +120,11 @@ impl ReferenceJob {
         mut progress: impl FnMut(u32),
     ) -> Option<ReferenceImage> {
         let settings = &self.settings;
-        let mut context = RenderContext::new(Arc::clone(&self.scene), settings.clone());
-        context.set_camera(&self.camera);
+        let context = RenderContext::with_camera(
+            Arc::clone(&self.scene),
+            settings.clone(),
+            Some(&self.camera),
+        );
         let mut film = Film::new(settings.width, settings.height);
         render_cancellable(
             &context,

@@ -275,10 +275,24 @@ pub struct RenderContext {
 impl RenderContext {
     /// Builds the lights and the BVH of `scene` for `settings`, with the scene's default camera.
     pub fn new(scene: impl Into<Arc<Scene>>, settings: RenderSettings) -> Self {
+        Self::with_camera(scene, settings, None)
+    }
+
+    /// [`RenderContext::new`] through `camera` (`None`: the scene's default
+    /// one). With `auto_indirect_samples` the pilot runs here, through that
+    /// camera: the view decides where the noise is.
+    pub fn with_camera(
+        scene: impl Into<Arc<Scene>>,
+        settings: RenderSettings,
+        camera: Option<&Camera>,
+    ) -> Self {
         let scene = scene.into();
         let lights = LightTable::build(&scene, &settings);
         let accel = Accel::build(&scene, |t| !lights.is_hidden(t), lights.spheres.clone());
-        let camera = CameraRays::new(&scene.default_camera(), settings.width, settings.height);
+        let camera = match camera {
+            Some(camera) => CameraRays::new(camera, settings.width, settings.height),
+            None => CameraRays::new(&scene.default_camera(), settings.width, settings.height),
+        };
         let mut context = Self {
             scene,
             accel,
@@ -287,20 +301,26 @@ impl RenderContext {
             settings,
             camera,
         };
-        if context.settings.auto_indirect_samples {
-            context.indirect_samples = crate::splitting::choose_indirect_samples(&context).count;
-        }
+        context.update_indirect_samples();
         context
     }
 
-    /// Renders through `camera` instead of the scene's default one (and,
-    /// with `auto_indirect_samples`, chooses the continuations again: the
-    /// view decides where the noise is).
+    /// Sets the continuations per first hit the walks take from the
+    /// settings: their count, or with `auto_indirect_samples` the pilot's
+    /// choice through the current camera. Called once the settings and the
+    /// camera of a film are final.
+    pub fn update_indirect_samples(&mut self) {
+        self.indirect_samples = if self.settings.auto_indirect_samples {
+            crate::splitting::choose_indirect_samples(self).count
+        } else {
+            self.settings.indirect_samples.max(1)
+        };
+    }
+
+    /// Renders through `camera` from now on; the continuations per first
+    /// hit stay as they are (a film's samples must all take the same).
     pub fn set_camera(&mut self, camera: &Camera) {
         self.camera = CameraRays::new(camera, self.settings.width, self.settings.height);
-        if self.settings.auto_indirect_samples {
-            self.indirect_samples = crate::splitting::choose_indirect_samples(self).count;
-        }
     }
 
     /// One sample of pixel (`x`, `y`) with two continuations at the first

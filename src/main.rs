@@ -499,10 +499,7 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
         .context("cannot start the worker threads")
         .map_err(runtime)?;
     let (film, stats, indirect_samples) = pool.install(|| {
-        let mut context = RenderContext::new(scene, settings.clone());
-        if let Some(camera) = &job.camera {
-            context.set_camera(camera);
-        }
+        let context = RenderContext::with_camera(scene, settings.clone(), job.camera.as_ref());
         let mut film = Film::new(settings.width, settings.height);
         let bar = progress_bar(job.budget);
         let stats = render(&context, &mut film, job.budget, |s| {

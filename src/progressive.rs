@@ -31,7 +31,6 @@ use crate::integrator::{RayCounts, RenderContext};
 use crate::render::{PassBuffer, render_pass_cancellable};
 use crate::scene::{Camera, Scene};
 use crate::settings::{RenderSettings, Term, TermSet};
-use crate::splitting::choose_indirect_samples;
 
 /// Everything that decides what the viewer shows.
 #[derive(Clone, Debug)]
@@ -316,6 +315,7 @@ impl Worker {
             current.context.settings = settings.clone();
             current.context.camera =
                 CameraRays::new(&request.camera, settings.width, settings.height);
+            current.context.update_indirect_samples();
             current.film = Arc::new(Mutex::new(Film::new(settings.width, settings.height)));
             *lock(&self.shared.film) = Some(Arc::clone(&current.film));
             current.next_sample = 0;
@@ -329,10 +329,6 @@ impl Worker {
         } else {
             // visible terms, pause or stop changed: no restart
             current.context.settings.terms = settings.terms;
-            if settings.auto_indirect_samples {
-                // the noisier part may have changed: later samples split as the pilot says
-                current.context.indirect_samples = choose_indirect_samples(&current.context).count;
-            }
             current.converged = false;
             current.request = request;
             self.publish_full();
@@ -342,8 +338,11 @@ impl Worker {
     /// Builds lights and BVH for `request` and starts from an empty film.
     fn start(&mut self, request: ViewRequest) {
         let settings = request.settings.clone();
-        let mut context = RenderContext::new(Arc::clone(&request.scene), settings.clone());
-        context.set_camera(&request.camera);
+        let context = RenderContext::with_camera(
+            Arc::clone(&request.scene),
+            settings.clone(),
+            Some(&request.camera),
+        );
         let film = Arc::new(Mutex::new(Film::new(settings.width, settings.height)));
         *lock(&self.shared.film) = Some(Arc::clone(&film));
         self.restarts += 1;

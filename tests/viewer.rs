@@ -437,13 +437,38 @@ fn a_probe_click_shows_the_pixel_statistics_with_n_equal_to_the_spp() {
     let done = wait_for(&mut harness, "6 spp", |s| {
         s.idle && s.samples_per_pixel() >= 6
     });
+    probe_the_back_wall(&mut harness, &done);
+}
+
+/// With the splitting pilot on, the film's samples take its count of
+/// continuations, and the probe traces them again with that count.
+#[test]
+fn with_auto_splitting_the_probe_traces_with_the_renders_count() {
+    let mut harness = harness();
+    harness.state_mut().state.settings.auto_indirect_samples = true;
+    harness.state_mut().state.stop_at_spp = Some(6);
+    let done = wait_for(&mut harness, "6 spp, split", |s| {
+        s.idle
+            && s.samples_per_pixel() >= 6
+            && s.source
+                .as_ref()
+                .is_some_and(|s| s.settings.auto_indirect_samples)
+    });
+    assert!(done.indirect_samples > 1, "{}", done.indirect_samples);
+    harness.get_by_label(&format!("indirect ×{} (auto)", done.indirect_samples));
+    probe_the_back_wall(&mut harness, &done);
+}
+
+/// Probes the back wall of the idle film `done` and checks that the probe
+/// reproduces the film, then its path view, then closes it.
+fn probe_the_back_wall(harness: &mut Harness<'static, LumiereApp>, done: &Snapshot) {
     harness.get_by_label("Probe").click();
     harness.run_steps(2);
     assert!(harness.state().probe_tool);
     let rect = harness.state().image_rect().expect("the image is drawn");
     // the back wall, lit by all three terms
     let on_back_wall = rect.min + egui::vec2(rect.width() * 0.5, rect.height() * 0.45);
-    mouse_drag(&mut harness, on_back_wall, on_back_wall);
+    mouse_drag(harness, on_back_wall, on_back_wall);
     assert_eq!(
         harness.state().selected,
         None,
@@ -451,7 +476,7 @@ fn a_probe_click_shows_the_pixel_statistics_with_n_equal_to_the_spp() {
     );
     let (x, y) = harness.state().probe.pixel.expect("a pixel is probed");
     assert_eq!((x, y), (32, 21));
-    wait_for_app(&mut harness, "the probe", |app| app.probe.result.is_some());
+    wait_for_app(harness, "the probe", |app| app.probe.result.is_some());
     harness.run_steps(2);
     harness.get_by_label("Pixel probe");
     harness.get_by_label("pixel (32, 21)");
@@ -464,7 +489,7 @@ fn a_probe_click_shows_the_pixel_statistics_with_n_equal_to_the_spp() {
     }
     let l1 = &result.probe.terms[1];
     assert!(l1.mean_luminance() > 0.0 && l1.standard_error > 0.0);
-    path_view_draws_the_sample_rays(&mut harness);
+    path_view_draws_the_sample_rays(harness);
     // and the window closes
     harness.get_by_label("Clear probe").click();
     harness.run_steps(2);

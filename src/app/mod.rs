@@ -311,8 +311,13 @@ impl LumiereApp {
             self.renderer.film(),
             self.reference.as_ref(),
         );
-        self.probe
-            .update(ctx, &self.sent, snapshot.generation, self.renderer.film());
+        self.probe.update(
+            ctx,
+            &self.sent,
+            snapshot.generation,
+            self.renderer.film(),
+            snapshot.indirect_samples,
+        );
     }
 
     /// Replaces the scene by the one at `spec`; on failure keeps the current one.

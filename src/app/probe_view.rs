@@ -25,7 +25,7 @@ use crate::path_view::{PathLine, PathSample, RayRole, path_lines, segment_lumina
 use crate::probe::{FilmPixel, MAX_PROBE_SAMPLES, PixelProbe, TermProbe, trace_pixel};
 use crate::progressive::ViewRequest;
 use crate::scene::Scene;
-use crate::settings::{LightMode, Term, TermSet};
+use crate::settings::{LightMode, RenderSettings, Term, TermSet};
 
 /// Shortest time between two refreshes of the probe while the film converges.
 pub const REFRESH_INTERVAL: Duration = Duration::from_millis(500);
@@ -217,6 +217,7 @@ impl ProbeState {
         request: &ViewRequest,
         generation: u64,
         film: Option<Arc<Mutex<Film>>>,
+        indirect_samples: u32,
     ) {
         if self.job.as_ref().is_some_and(|j| j.is_finished())
             && let Some(job) = self.job.take()
@@ -258,7 +259,7 @@ impl ProbeState {
             std::thread::Builder::new()
                 .name("lumiere probe".into())
                 .spawn(move || {
-                    let result = run_probe(&request, &film, &cache, pixel);
+                    let result = run_probe(&request, &film, &cache, pixel, indirect_samples);
                     repaint.request_repaint();
                     result
                 })
@@ -273,6 +274,7 @@ fn run_probe(
     film: &Mutex<Film>,
     cache: &Mutex<Option<ProbeContext>>,
     (x, y): (u32, u32),
+    indirect_samples: u32,
 ) -> Option<ProbeResult> {
     let started = Instant::now();
     let settings = &request.settings;
@@ -296,13 +298,22 @@ fn run_probe(
             scene: Arc::clone(&request.scene),
             light_mode: settings.light_mode,
             light_radius: settings.light_radius,
-            context: RenderContext::new(Arc::clone(&request.scene), settings.clone()),
+            // the render's continuations come from its snapshot: no pilot here
+            context: RenderContext::new(
+                Arc::clone(&request.scene),
+                RenderSettings {
+                    auto_indirect_samples: false,
+                    ..settings.clone()
+                },
+            ),
         });
     }
     let probe_context = cache.as_mut()?;
     let context = &mut probe_context.context;
     context.settings = settings.clone();
     context.set_camera(&request.camera);
+    // the film's samples took the render's count: traced again with it
+    context.indirect_samples = indirect_samples;
     let probe = trace_pixel(context, &pixel);
     Some(ProbeResult {
         probe,
