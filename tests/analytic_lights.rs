@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{estimate, polygon_irradiance};
+use common::{add_floor, estimate, polygon_irradiance};
 
 use glam::Vec3;
 use lumiere::geometry::Ray;
@@ -28,24 +28,12 @@ fn light_corners(center: Vec3) -> [Vec3; 4] {
     ]
 }
 
-/// Adds the plane z = 0, 40 m wide, facing +z.
-fn add_floor(scene: &mut Scene, material: u32) {
-    let s = 20.0;
-    let plane = [
-        Vec3::new(-s, -s, 0.0),
-        Vec3::new(s, -s, 0.0),
-        Vec3::new(s, s, 0.0),
-        Vec3::new(-s, s, 0.0),
-    ];
-    scene.add_mesh("plane", material, &plane, &[[0, 1, 2], [0, 2, 3]]);
-}
-
 /// A large plane z = 0 (floor material) under a square light at height HEIGHT.
 fn quad_over_plane(floor: Material, light_center: Vec3) -> Scene {
     let mut scene = Scene::default();
     let floor = scene.add_material(floor);
     let light = scene.add_material(Material::emitter("light", Vec3::splat(RADIANCE)));
-    add_floor(&mut scene, floor);
+    add_floor(&mut scene, floor, 20.0);
     scene.add_mesh(
         "light",
         light,
@@ -141,7 +129,7 @@ fn mirror_shows_the_light_times_its_reflectance() {
 fn plane_with_light(light: lumiere::scene::PunctualLight) -> Scene {
     let mut scene = Scene::default();
     let floor = scene.add_material(Material::lambert("floor", Vec3::splat(ALBEDO)));
-    add_floor(&mut scene, floor);
+    add_floor(&mut scene, floor, 20.0);
     scene.lights.push(light);
     scene
 }

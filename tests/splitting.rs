@@ -7,7 +7,7 @@ mod common;
 use std::process::Command;
 use std::sync::Arc;
 
-use common::small;
+use common::{add_floor, small};
 use glam::Vec3;
 use lumiere::integrator::RenderContext;
 use lumiere::scene::builtin;
@@ -74,14 +74,7 @@ fn direct_lighting_alone_is_not_split() {
 fn continuations_that_bring_nothing_are_not_split() {
     let mut scene = Scene::default();
     let floor = scene.add_material(Material::lambert("floor", Vec3::splat(0.5)));
-    let s = 5.0;
-    let plane = [
-        Vec3::new(-s, -s, 0.0),
-        Vec3::new(s, -s, 0.0),
-        Vec3::new(s, s, 0.0),
-        Vec3::new(-s, s, 0.0),
-    ];
-    scene.add_mesh("floor", floor, &plane, &[[0, 1, 2], [0, 2, 3]]);
+    add_floor(&mut scene, floor, 5.0);
     let light = scene.add_material(Material::emitter("light", Vec3::splat(4.0)));
     let h = 0.5;
     let square = [

@@ -7,7 +7,7 @@ mod common;
 
 use std::sync::Arc;
 
-use common::{assert_agrees, estimate, mean_and_error, polygon_irradiance, small};
+use common::{add_floor, assert_agrees, estimate, mean_and_error, polygon_irradiance, small};
 use glam::{DVec3, Vec2, Vec3};
 use lumiere::geometry::Ray;
 use lumiere::integrator::{PathLog, RayCounts, RenderContext, SegmentKind};
@@ -39,14 +39,7 @@ fn light_corners(center: Vec3) -> [Vec3; 4] {
 fn plane_under_lights(lights: &[(Vec3, f32)]) -> Scene {
     let mut scene = Scene::default();
     let floor = scene.add_material(Material::lambert("floor", Vec3::splat(ALBEDO)));
-    let s = 20.0;
-    let plane = [
-        Vec3::new(-s, -s, 0.0),
-        Vec3::new(s, -s, 0.0),
-        Vec3::new(s, s, 0.0),
-        Vec3::new(-s, s, 0.0),
-    ];
-    scene.add_mesh("plane", floor, &plane, &[[0, 1, 2], [0, 2, 3]]);
+    add_floor(&mut scene, floor, 20.0);
     for (i, &(center, radiance)) in lights.iter().enumerate() {
         let material = scene.add_material(Material::emitter(
             &format!("light {i}"),

@@ -10,6 +10,18 @@ use lumiere::render::{Budget, RenderStats, render};
 use lumiere::sampling::SampleStream;
 use lumiere::{Film, RenderContext, RenderSettings, Scene, Term, TermSet};
 
+/// Adds the plane z = 0, 2·`half_side` wide, facing +z.
+pub fn add_floor(scene: &mut Scene, material: u32, half_side: f32) {
+    let s = half_side;
+    let plane = [
+        Vec3::new(-s, -s, 0.0),
+        Vec3::new(s, -s, 0.0),
+        Vec3::new(s, s, 0.0),
+        Vec3::new(-s, s, 0.0),
+    ];
+    scene.add_mesh("plane", material, &plane, &[[0, 1, 2], [0, 2, 3]]);
+}
+
 /// Renders `scene` with `settings` at `spp` samples per pixel.
 pub fn render_film(scene: Scene, settings: &RenderSettings, spp: u32) -> Film {
     render_with_stats(scene, settings, spp).0
