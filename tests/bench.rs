@@ -9,9 +9,9 @@ use std::sync::Arc;
 
 use lumiere::bench::csv::{ErrorRow, parse_error_csv};
 use lumiere::bench::error_curve::{
-    ErrorBench, Estimator, reference_file_name, sample_counts, summarize, time_to_relmse,
+    ErrorBench, Estimator, TimeRatio, reference_file_name, sample_counts, summarize, time_to_relmse,
 };
-use lumiere::bench::run::{BenchConfig, run};
+use lumiere::bench::run::{BenchConfig, BenchReport, run};
 use lumiere::bench::scaling::{ScalingBench, procedural_scene, write_gltf};
 use lumiere::bench::throughput::{RayKind, record_segments, replay_matches};
 use lumiere::bench::{Section, Silent};
@@ -203,6 +203,58 @@ fn peer_rows_merge_into_the_summary() {
     assert!((curves[0].seconds_to[0].unwrap() - 5.0).abs() < 1e-9);
     assert_eq!(curves[0].seconds_to[1], None);
     assert_eq!(curves[1].seconds_to[1], Some(0.1));
+}
+
+/// When only one curve reaches a threshold, the ratio is bounded by the
+/// other's last render, and the summary says which way.
+#[test]
+fn a_threshold_one_curve_misses_gives_a_bounded_ratio() {
+    let row = |renderer: &str, spp, seconds, relmse| ErrorRow {
+        renderer: String::from(renderer),
+        estimator: "e".into(),
+        spp,
+        seconds,
+        rmse: 0.1,
+        relmse,
+    };
+    // the peer reaches 1e-2 at 5 s (as above) but not 1e-3 by its last render, at 8 s
+    let peer_rows = [
+        row("mitsuba", 4, 2.0, 0.025),
+        row("mitsuba", 16, 8.0, 0.00625),
+    ];
+    let fast = summarize(&[row("lumiere", 1, 0.5, 0.02), row("lumiere", 4, 2.0, 0.0005)]);
+    let slow = summarize(&[row("lumiere", 1, 4.0, 0.2), row("lumiere", 4, 16.0, 0.05)]);
+    let peer = &summarize(&peer_rows)[0];
+    assert_eq!(peer.last_seconds, 8.0);
+    let TimeRatio::Measured(at_1e2) = TimeRatio::of(&fast[0], peer, 0) else {
+        panic!("both reach 1e-2");
+    };
+    assert!((at_1e2 - fast[0].seconds_to[0].unwrap() / 5.0).abs() < 1e-12);
+    let TimeRatio::Below(bound) = TimeRatio::of(&fast[0], peer, 1) else {
+        panic!("only lumiere reaches 1e-3");
+    };
+    assert!((bound - fast[0].seconds_to[1].unwrap() / 8.0).abs() < 1e-12);
+    let TimeRatio::Above(above) = TimeRatio::of(&slow[0], peer, 0) else {
+        panic!("only the peer reaches 1e-2");
+    };
+    assert!((above - 16.0 / peer.seconds_to[0].unwrap()).abs() < 1e-12);
+    assert_eq!(TimeRatio::of(&slow[0], peer, 1), TimeRatio::Unknown);
+
+    let mut curves = fast;
+    curves.push(peer.clone());
+    let report = BenchReport {
+        error_rows: Vec::new(),
+        curves,
+        notes: Vec::new(),
+        throughput: None,
+        scaling: Vec::new(),
+        files: Vec::new(),
+    };
+    let summary = report.summary();
+    assert!(summary.contains("lumiere ÷ mitsuba e"), "{summary}");
+    assert!(summary.contains(&format!("{at_1e2:.2}")), "{summary}");
+    assert!(summary.contains(&format!("< {bound:.2}")), "{summary}");
+    assert!(summary.contains("only lumiere reached τ"), "{summary}");
 }
 
 #[test]

@@ -150,8 +150,47 @@ pub struct CurveSummary {
     pub estimator: String,
     pub last_spp: u32,
     pub last_relmse: f64,
+    /// The time of the last point's render.
+    pub last_seconds: f64,
     /// One per threshold, in the order of [`RELMSE_THRESHOLDS`].
     pub seconds_to: [Option<f64>; 2],
+}
+
+/// One curve's time to a relMSE threshold divided by another's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TimeRatio {
+    /// Both reached the threshold.
+    Measured(f64),
+    /// Only the first did: the other's time is longer than its last render,
+    /// so the ratio is below this.
+    Below(f64),
+    /// Only the other did: the ratio is above this.
+    Above(f64),
+    /// Neither did.
+    Unknown,
+}
+
+impl TimeRatio {
+    /// `ours`' time to threshold number `index` ÷ `theirs'`.
+    pub fn of(ours: &CurveSummary, theirs: &CurveSummary, index: usize) -> Self {
+        match (ours.seconds_to[index], theirs.seconds_to[index]) {
+            (Some(a), Some(b)) if b > 0.0 => Self::Measured(a / b),
+            (Some(a), None) if theirs.last_seconds > 0.0 => Self::Below(a / theirs.last_seconds),
+            (None, Some(b)) if b > 0.0 => Self::Above(ours.last_seconds / b),
+            _ => Self::Unknown,
+        }
+    }
+}
+
+impl std::fmt::Display for TimeRatio {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Measured(r) => write!(f, "{r:.2}"),
+            Self::Below(r) => write!(f, "< {r:.2}"),
+            Self::Above(r) => write!(f, "> {r:.2}"),
+            Self::Unknown => write!(f, "n/a"),
+        }
+    }
 }
 
 /// The curves of `rows`, grouped by (renderer, estimator) in order of first appearance.
@@ -188,6 +227,7 @@ pub fn summarize(rows: &[ErrorRow]) -> Vec<CurveSummary> {
                 estimator,
                 last_spp: last.spp,
                 last_relmse: last.relmse,
+                last_seconds: last.seconds,
                 seconds_to: RELMSE_THRESHOLDS.map(|t| time_to_relmse(&xy, t)),
             }
         })

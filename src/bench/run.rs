@@ -10,7 +10,7 @@ use crate::settings::RenderSettings;
 
 use super::csv::{ErrorRow, error_csv, read_error_csv, write_text};
 use super::error_curve::{
-    CurveSummary, ErrorBench, LUMIERE, RELMSE_THRESHOLDS, measure_curves, reference, sample_counts,
+    CurveSummary, ErrorBench, LUMIERE, TimeRatio, measure_curves, reference, sample_counts,
     summarize,
 };
 use super::peer::{Peer, PeerRun};
@@ -122,6 +122,37 @@ pub fn run(
     Ok(report)
 }
 
+/// The table of lumiere's time to each threshold ÷ `peer`'s, one row per lumiere curve.
+fn write_peer_ratios(out: &mut String, curves: &[CurveSummary], peer: &CurveSummary, width: usize) {
+    let _ = writeln!(
+        out,
+        "  time to relMSE τ, lumiere ÷ {} {} (target at 1e-3: ≤ 0.50)",
+        peer.renderer, peer.estimator
+    );
+    let mut bounded = false;
+    for ours in curves.iter().filter(|c| c.renderer == LUMIERE) {
+        let ratios = [0, 1].map(|index| TimeRatio::of(ours, peer, index));
+        bounded |= ratios
+            .iter()
+            .any(|r| matches!(r, TimeRatio::Below(_) | TimeRatio::Above(_)));
+        let _ = writeln!(
+            out,
+            "  {:<10} {:<width$} {:>14} {:>14}",
+            "",
+            ours.estimator,
+            ratios[0].to_string(),
+            ratios[1].to_string()
+        );
+    }
+    if bounded {
+        let _ = writeln!(
+            out,
+            "  (< r: only lumiere reached τ, the peer's time is past its last render's; \
+             > r: only the peer did)"
+        );
+    }
+}
+
 fn seconds(value: Option<f64>) -> String {
     value.map_or_else(|| "not reached".into(), |s| format!("{s:.2} s"))
 }
@@ -160,22 +191,8 @@ impl BenchReport {
                     c.last_relmse
                 );
             }
-            let index = RELMSE_THRESHOLDS
-                .iter()
-                .position(|&t| t == 1e-3)
-                .unwrap_or(1);
             for peer in self.curves.iter().filter(|c| c.renderer != LUMIERE) {
-                for ours in self.curves.iter().filter(|c| c.renderer == LUMIERE) {
-                    let ratio = match (ours.seconds_to[index], peer.seconds_to[index]) {
-                        (Some(a), Some(b)) if b > 0.0 => format!("{:.2}", a / b),
-                        _ => "n/a (a curve does not reach 1e-3)".into(),
-                    };
-                    let _ = writeln!(
-                        out,
-                        "  time to relMSE 1e-3, lumiere {} ÷ {} {}: {ratio}",
-                        ours.estimator, peer.renderer, peer.estimator
-                    );
-                }
+                write_peer_ratios(&mut out, &self.curves, peer, width);
             }
         }
         for note in &self.notes {
