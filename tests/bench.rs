@@ -243,15 +243,13 @@ fn a_threshold_one_curve_misses_gives_a_bounded_ratio() {
     let mut curves = fast;
     curves.push(peer.clone());
     let report = BenchReport {
-        error_rows: Vec::new(),
         curves,
-        notes: Vec::new(),
-        throughput: None,
-        scaling: Vec::new(),
-        files: Vec::new(),
+        reference: Some("64 spp".into()),
+        ..BenchReport::default()
     };
     let summary = report.summary();
     assert!(summary.contains("lumiere ÷ mitsuba e"), "{summary}");
+    assert!(summary.contains("reference: 64 spp"), "{summary}");
     assert!(summary.contains(&format!("{at_1e2:.2}")), "{summary}");
     assert!(summary.contains(&format!("< {bound:.2}")), "{summary}");
     assert!(summary.contains("only lumiere reached τ"), "{summary}");
@@ -447,4 +445,62 @@ fn with_adaptive_sampling_every_curve_is_measured_uniform_and_adaptive() {
         Estimator::all_pairs(&[LightSampling::Mis], &[Sampler::Independent], None).len(),
         1
     );
+}
+
+/// The peer renders the glTF file as authored: settings that make lumiere
+/// render another scene (other lights, another BRDF) leave it out, with the
+/// reason; the estimator's settings do not.
+#[test]
+fn the_peer_is_left_out_when_lumiere_renders_another_scene() {
+    use lumiere::bench::peer::unlike_the_file;
+    use lumiere::settings::{BrdfOverride, LightMode};
+    let mut settings = RenderSettings {
+        sampler: Sampler::Sobol,
+        light_sampling: LightSampling::Area,
+        indirect_samples: 4,
+        seed: 7,
+        ..RenderSettings::default()
+    };
+    assert_eq!(unlike_the_file(&settings), None);
+    settings.light_mode = LightMode::Point;
+    let reason = unlike_the_file(&settings).expect("point lights are another scene");
+    assert!(reason.contains("--lights point"), "{reason}");
+    settings.brdf = BrdfOverride::Phong;
+    let reason = unlike_the_file(&settings).expect("Phong is another scene");
+    assert!(
+        reason.contains("--lights point and --brdf phong"),
+        "{reason}"
+    );
+}
+
+/// The reference spends the rays of its sample budget with Sobol numbers
+/// and the pilot's continuations: fewer samples of M continuations each
+/// where the continuations are noisy (a power of two), all the budget's
+/// samples with one where there is nothing to split.
+#[test]
+fn the_reference_spends_its_budget_on_the_least_noisy_estimator() {
+    use lumiere::bench::error_curve::reference_plan;
+    let scene = Arc::new(builtin::cornell());
+    let settings = RenderSettings {
+        width: 32,
+        height: 32,
+        ..RenderSettings::default()
+    };
+    let (context, spp) = reference_plan(&scene, &settings, 4096);
+    assert_eq!(context.settings.sampler, Sampler::Sobol);
+    assert!(
+        context.indirect_samples >= 2,
+        "{}",
+        context.indirect_samples
+    );
+    assert!(spp.is_power_of_two() && spp < 4096, "{spp}");
+    assert!(spp * context.indirect_samples >= 4096 / 2, "{spp}");
+    assert_ne!(context.settings.seed, settings.seed);
+
+    let direct = RenderSettings {
+        terms: "L0,L1".parse::<TermSet>().unwrap(),
+        ..settings
+    };
+    let (context, spp) = reference_plan(&scene, &direct, 1000);
+    assert_eq!((context.indirect_samples, spp), (1, 1000));
 }

@@ -13,7 +13,7 @@ use std::process::Command;
 use std::str::FromStr;
 
 use crate::scene::builtin;
-use crate::settings::{RenderSettings, Term};
+use crate::settings::{BrdfOverride, LightMode, RenderSettings, Term};
 
 use super::csv::{ErrorRow, read_error_csv};
 use super::{BenchError, Progress};
@@ -75,6 +75,25 @@ pub fn max_depth(settings: &RenderSettings) -> Option<u32> {
     (contiguous && terms.contains(Term::L0)).then_some(reflections.saturating_add(1))
 }
 
+/// Why the peer's image would not converge to lumiere's reference for
+/// `settings`, if it would not: the peer renders the file as authored.
+pub fn unlike_the_file(settings: &RenderSettings) -> Option<String> {
+    let mut changes = Vec::new();
+    if settings.light_mode != LightMode::Authored {
+        changes.push(format!("--lights {}", settings.light_mode.label()));
+    }
+    if settings.brdf != BrdfOverride::Authored {
+        changes.push(format!("--brdf {}", settings.brdf.label()));
+    }
+    (!changes.is_empty()).then(|| {
+        format!(
+            "{} make lumiere render another scene than the file the peer reads, \
+             so the peer's error against lumiere's reference would not be its noise",
+            changes.join(" and ")
+        )
+    })
+}
+
 /// The scene as a glTF file the peer can read: the file itself, or the
 /// built-in Cornell box written into `folder`.
 fn scene_file(scene: &str, folder: &Path) -> Result<PathBuf, BenchError> {
@@ -117,6 +136,12 @@ pub fn run(
             peer.label()
         )));
     };
+    if let Some(reason) = unlike_the_file(settings) {
+        return Ok(PeerRun::Skipped(format!(
+            "{} not run: {reason}",
+            peer.label()
+        )));
+    }
     let scene_path = scene_file(scene, folder)?;
     let csv = folder.join(format!("{}.csv", peer.label()));
     let spp: Vec<String> = counts.iter().map(u32::to_string).collect();

@@ -47,6 +47,8 @@ impl BenchConfig {
 pub struct BenchReport {
     pub error_rows: Vec<ErrorRow>,
     pub curves: Vec<CurveSummary>,
+    /// What the curves were measured against (how it was rendered, or the file).
+    pub reference: Option<String>,
     /// Why a peer did not run, if it did not.
     pub notes: Vec<String>,
     pub throughput: Option<Throughput>,
@@ -72,6 +74,7 @@ pub fn run(
     if config.sections.contains(&Section::Error) {
         let (reference_image, reference_path) = reference(&config.error, &scene, folder, progress)?;
         report.files.push(reference_path.clone());
+        report.reference = Some(reference_image.label.clone());
         let mut rows = measure_curves(&config.error, &scene, &reference_image, progress);
         if let Some(peer) = config.peer {
             let counts = sample_counts(config.error.max_spp);
@@ -138,7 +141,7 @@ fn write_peer_ratios(out: &mut String, curves: &[CurveSummary], peer: &CurveSumm
         let _ = writeln!(
             out,
             "  {:<10} {:<width$} {:>14} {:>14}",
-            "",
+            ours.renderer,
             ours.estimator,
             ratios[0].to_string(),
             ratios[1].to_string()
@@ -166,6 +169,9 @@ impl BenchReport {
                 out,
                 "error against time (time to reach relMSE ≤ τ, log-log interpolation)"
             );
+            if let Some(reference) = &self.reference {
+                let _ = writeln!(out, "  reference: {reference}");
+            }
             // as wide as the longest label ("mis/independent/auto split ×2")
             let width = self
                 .curves
