@@ -367,10 +367,10 @@ pub fn reference(
         width: settings.width,
         height: settings.height,
         radiance,
-        label: format!(
-            "{spp} spp, Sobol, ×{} continuations",
-            context.indirect_samples
-        ),
+        label: match context.indirect_samples {
+            1 => format!("{spp} spp, Sobol"),
+            m => format!("{spp} spp, Sobol, {m} continuations per first hit"),
+        },
     };
     Ok((image, path))
 }
