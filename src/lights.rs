@@ -207,9 +207,7 @@ impl LightTable {
             LightMode::Point => table.add_collapsed_emitters(scene),
             _ => table.add_emissive_triangles(scene),
         }
-        let radius = settings
-            .light_radius
-            .unwrap_or(0.02 * scene.bounds().diagonal().max(1e-6));
+        let radius = sphere_light_radius(scene, settings);
         table.add_punctual_lights(scene, settings.light_mode == LightMode::Area, radius);
         let scene_radius = 0.5 * scene.bounds().diagonal();
         let powers = table.lights.iter().map(|l| power(scene, l, scene_radius));
@@ -573,6 +571,14 @@ impl LightTable {
             .map_or(0.0, |(_, one_minus_cos)| uniform_cone_pdf(one_minus_cos));
         (radiance, self.selection.pmf(light) * pdf)
     }
+}
+
+/// Radius of the sphere lights `--lights area` makes of point and spot
+/// lights: `settings.light_radius`, or 2% of the scene's diagonal.
+pub fn sphere_light_radius(scene: &Scene, settings: &RenderSettings) -> f32 {
+    settings
+        .light_radius
+        .unwrap_or(0.02 * scene.bounds().diagonal().max(1e-6))
 }
 
 /// A Dirac light at `position` seen from `at`.

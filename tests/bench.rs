@@ -447,13 +447,15 @@ fn with_adaptive_sampling_every_curve_is_measured_uniform_and_adaptive() {
     );
 }
 
-/// The peer renders the glTF file as authored: settings that make lumiere
-/// render another scene (other lights, another BRDF) leave it out, with the
-/// reason; the estimator's settings do not.
+/// The peer renders the scene lumiere renders: `--brdf lambert|mirror` and
+/// `--lights area` (with the radius lumiere uses) pass to it, the overrides
+/// it has no equivalent for leave it out with their names; the estimator's
+/// settings change nothing.
 #[test]
-fn the_peer_is_left_out_when_lumiere_renders_another_scene() {
-    use lumiere::bench::peer::unlike_the_file;
+fn the_peer_renders_lumieres_overrides_or_is_left_out() {
+    use lumiere::bench::peer::scene_overrides;
     use lumiere::settings::{BrdfOverride, LightMode};
+    let scene = builtin::cornell();
     let mut settings = RenderSettings {
         sampler: Sampler::Sobol,
         light_sampling: LightSampling::Area,
@@ -461,12 +463,31 @@ fn the_peer_is_left_out_when_lumiere_renders_another_scene() {
         seed: 7,
         ..RenderSettings::default()
     };
-    assert_eq!(unlike_the_file(&settings), None);
+    assert_eq!(scene_overrides(&scene, &settings), Ok(vec![]));
+
+    settings.brdf = BrdfOverride::Mirror;
+    settings.light_mode = LightMode::Area;
+    let arguments = scene_overrides(&scene, &settings).expect("Mitsuba has mirrors and spheres");
+    let radius = 0.02 * scene.bounds().diagonal();
+    assert_eq!(
+        arguments[..3],
+        [
+            "--sphere-lights".to_string(),
+            radius.to_string(),
+            "--brdf".into()
+        ]
+    );
+    assert_eq!(arguments[3], "mirror");
+    settings.light_radius = Some(0.125);
+    settings.brdf = BrdfOverride::Lambert;
+    let arguments = scene_overrides(&scene, &settings).unwrap();
+    assert_eq!(arguments, ["--sphere-lights", "0.125", "--brdf", "lambert"]);
+
     settings.light_mode = LightMode::Point;
-    let reason = unlike_the_file(&settings).expect("point lights are another scene");
-    assert!(reason.contains("--lights point"), "{reason}");
+    let reason = scene_overrides(&scene, &settings).expect_err("no cosine-lobe point lights");
+    assert!(reason.starts_with("--lights point make"), "{reason}");
     settings.brdf = BrdfOverride::Phong;
-    let reason = unlike_the_file(&settings).expect("Phong is another scene");
+    let reason = scene_overrides(&scene, &settings).expect_err("no Phong");
     assert!(
         reason.contains("--lights point and --brdf phong"),
         "{reason}"

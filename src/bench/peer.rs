@@ -12,7 +12,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::str::FromStr;
 
-use crate::scene::builtin;
+use crate::lights::sphere_light_radius;
+use crate::scene::{Scene, builtin};
 use crate::settings::{BrdfOverride, LightMode, RenderSettings, Term};
 
 use super::csv::{ErrorRow, read_error_csv};
@@ -75,23 +76,36 @@ pub fn max_depth(settings: &RenderSettings) -> Option<u32> {
     (contiguous && terms.contains(Term::L0)).then_some(reflections.saturating_add(1))
 }
 
-/// Why the peer's image would not converge to lumiere's reference for
-/// `settings`, if it would not: the peer renders the file as authored.
-pub fn unlike_the_file(settings: &RenderSettings) -> Option<String> {
-    let mut changes = Vec::new();
-    if settings.light_mode != LightMode::Authored {
-        changes.push(format!("--lights {}", settings.light_mode.label()));
+/// The peer's arguments that make it render the scene lumiere renders for
+/// `settings` (its `--brdf` and `--lights area` overrides), or why it
+/// cannot: the peer reads the file, and has no Phong model nor point lights
+/// with a cosine lobe.
+pub fn scene_overrides(scene: &Scene, settings: &RenderSettings) -> Result<Vec<String>, String> {
+    let mut arguments = Vec::new();
+    let mut missing = Vec::new();
+    match settings.light_mode {
+        LightMode::Authored => {}
+        LightMode::Area => arguments.extend([
+            "--sphere-lights".to_string(),
+            sphere_light_radius(scene, settings).to_string(),
+        ]),
+        LightMode::Point => missing.push("--lights point"),
     }
-    if settings.brdf != BrdfOverride::Authored {
-        changes.push(format!("--brdf {}", settings.brdf.label()));
+    match settings.brdf {
+        BrdfOverride::Authored => {}
+        BrdfOverride::Lambert | BrdfOverride::Mirror => {
+            arguments.extend(["--brdf".to_string(), settings.brdf.label().to_string()])
+        }
+        BrdfOverride::Phong => missing.push("--brdf phong"),
     }
-    (!changes.is_empty()).then(|| {
-        format!(
-            "{} make lumiere render another scene than the file the peer reads, \
-             so the peer's error against lumiere's reference would not be its noise",
-            changes.join(" and ")
-        )
-    })
+    if missing.is_empty() {
+        return Ok(arguments);
+    }
+    Err(format!(
+        "{} make lumiere render a scene the peer cannot, \
+         so the peer's error against lumiere's reference would not be its noise",
+        missing.join(" and ")
+    ))
 }
 
 /// The scene as a glTF file the peer can read: the file itself, or the
@@ -120,6 +134,7 @@ fn find_script(peer: Peer) -> Option<PathBuf> {
 pub fn run(
     peer: Peer,
     scene: &str,
+    loaded: &Scene,
     settings: &RenderSettings,
     reference: &Path,
     counts: &[u32],
@@ -136,12 +151,15 @@ pub fn run(
             peer.label()
         )));
     };
-    if let Some(reason) = unlike_the_file(settings) {
-        return Ok(PeerRun::Skipped(format!(
-            "{} not run: {reason}",
-            peer.label()
-        )));
-    }
+    let overrides = match scene_overrides(loaded, settings) {
+        Ok(arguments) => arguments,
+        Err(reason) => {
+            return Ok(PeerRun::Skipped(format!(
+                "{} not run: {reason}",
+                peer.label()
+            )));
+        }
+    };
     let scene_path = scene_file(scene, folder)?;
     let csv = folder.join(format!("{}.csv", peer.label()));
     let spp: Vec<String> = counts.iter().map(u32::to_string).collect();
@@ -155,6 +173,7 @@ pub fn run(
         .args(["--height", &settings.height.to_string()])
         .args(["--max-depth", &depth.to_string()])
         .args(["--spp", &spp.join(",")])
+        .args(&overrides)
         .arg("--out")
         .arg(&csv)
         .output();

@@ -81,6 +81,7 @@ pub fn run(
             match super::peer::run(
                 peer,
                 &config.error.scene,
+                &scene,
                 config.settings(),
                 &reference_path,
                 &counts,

@@ -11,7 +11,11 @@ with lumiere's own definitions (src/metrics.rs):
 
     python tests/reference/mitsuba_bench.py SCENE.gltf --reference REF.exr \
         --width W --height H --max-depth 3 --spp 1,2,4,8,... --out OUT.csv \
-        [--variant llvm_ad_rgb] [--threads N]
+        [--variant llvm_ad_rgb] [--threads N] \
+        [--brdf lambert|mirror] [--sphere-lights RADIUS]
+
+(`--brdf` and `--sphere-lights` are lumiere's `--brdf` and `--lights area`,
+as in mitsuba_render.py.)
 
 The CSV's header is `renderer,estimator,spp,seconds,rmse,relmse`, one row a
 render (renderer `mitsuba`, estimator `path-llvm` or `path-scalar`); a short
@@ -102,6 +106,7 @@ def main(argv=None):
     ap.add_argument("--spp-per-pass", type=int, default=None,
                     help="most samples per render call (default 256 for llvm, unlimited for scalar)")
     ap.add_argument("--seed", type=int, default=1, help="seed of the first timed pass (the warm-up uses 0)")
+    mr.add_override_arguments(ap)
     args = ap.parse_args(argv)
 
     llvm = args.variant.startswith("llvm")
@@ -127,7 +132,8 @@ def main(argv=None):
         return 2
 
     g = mr.Gltf(args.scene)
-    scene = mi.load_dict(mr.convert(mi, g, args.width, args.height, 1, args.max_depth, verbose=False))
+    scene = mi.load_dict(mr.convert(mi, g, args.width, args.height, 1, args.max_depth, verbose=False,
+                                          brdf=args.brdf, sphere_radius=args.sphere_lights))
 
     per_pass = args.spp_per_pass or (256 if llvm else max(args.spp))
     seed = [args.seed]

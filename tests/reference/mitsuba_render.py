@@ -7,7 +7,8 @@ float EXR:
 
     python tests/reference/mitsuba_render.py SCENE.gltf --max-depth 3 \
         --spp 4096 --width 128 --height 128 --out OUT.exr \
-        [--variant llvm_ad_rgb|scalar_rgb] [--png PREVIEW.png]
+        [--variant llvm_ad_rgb|scalar_rgb] [--png PREVIEW.png] \
+        [--brdf lambert|mirror] [--sphere-lights RADIUS]
 
 `--max-depth` counts path segments, as Mitsuba does: 1 = emitters seen
 directly (L0), 2 = L0 + direct lighting (L1), 3 = L0 + L1 + one indirect
@@ -30,6 +31,14 @@ Supported glTF subset (anything else is rejected, not approximated):
   color x intensity, along the node's -Z);
 * the first camera (in node order) with a perspective projection: yfov,
   looking down its -Z. Without a camera, the scene is rejected.
+
+Two of lumiere's scene overrides are mirrored, so that both render the
+same scene: `--brdf lambert|mirror` (lumiere's `--brdf`: every material
+Lambert, or a mirror, of reflectance baseColor; emission unchanged) and
+`--sphere-lights RADIUS` (lumiere's `--lights area`: every point light
+becomes a sphere of that radius, a pure emitter of uniform radiance
+I / (pi r^2), the same power 4 pi I). lumiere's Phong and its point lights
+with a cosine lobe have no Mitsuba equivalent.
 
 The pixel filter is a box (each sample uniform inside its pixel), as in
 lumiere. The llvm variant needs a libLLVM shared library: set
@@ -163,8 +172,9 @@ def world_nodes(g):
 # Scene conversion
 # --------------------------------------------------------------------------
 
-def material_info(g, index):
-    """Returns (kind, rgb, emission rgb or None, double_sided)."""
+def material_info(g, index, brdf=None):
+    """Returns (kind, rgb, emission rgb or None, double_sided); `brdf`
+    ("lambert" or "mirror") replaces every material's model."""
     if index is None:
         mat = {}  # glTF default material: white, metallic 1, roughness 1
     else:
@@ -180,7 +190,9 @@ def material_info(g, index):
     base = [float(c) for c in pbr.get("baseColorFactor", [1, 1, 1, 1])[:3]]
     metallic = float(pbr.get("metallicFactor", 1.0))
     roughness = float(pbr.get("roughnessFactor", 1.0))
-    if metallic == 0.0 and roughness == 1.0:
+    if brdf is not None:
+        kind = brdf
+    elif metallic == 0.0 and roughness == 1.0:
         kind = "lambert"
     elif metallic == 1.0 and roughness == 0.0:
         kind = "mirror"
@@ -227,7 +239,19 @@ def build_mesh(mi, name, positions, normals, faces, bsdf, emission):
     return mesh
 
 
-def convert(mi, g, width, height, spp, max_depth, verbose=True):
+def point_light(position, intensity, sphere_radius):
+    """A point light of `intensity` (W/sr), or with `sphere_radius` the sphere
+    light of the same power: uniform radiance I / (pi r^2) leaving a sphere
+    that reflects nothing."""
+    if sphere_radius is None:
+        return {"type": "point", "position": position, "intensity": {"type": "rgb", "value": intensity}}
+    radiance = [c / (math.pi * sphere_radius * sphere_radius) for c in intensity]
+    return {"type": "sphere", "center": position, "radius": sphere_radius,
+            "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": [0.0, 0.0, 0.0]}},
+            "emitter": {"type": "area", "radiance": {"type": "rgb", "value": radiance}}}
+
+
+def convert(mi, g, width, height, spp, max_depth, verbose=True, brdf=None, sphere_radius=None):
     j = g.j
     scene = {"type": "scene"}
     camera = None
@@ -259,7 +283,7 @@ def convert(mi, g, width, height, spp, max_depth, verbose=True):
                 if "NORMAL" in prim["attributes"]:
                     nrm = g.accessor(prim["attributes"]["NORMAL"]).astype(np.float64) @ nmat.T
                     nrm /= np.linalg.norm(nrm, axis=1, keepdims=True)
-                kind, rgb, emission, double_sided = material_info(g, prim.get("material"))
+                kind, rgb, emission, double_sided = material_info(g, prim.get("material"), brdf)
                 if emission is not None:
                     if double_sided:
                         raise GltfError(f"{nname}: double-sided emitters are not supported "
@@ -276,8 +300,7 @@ def convert(mi, g, width, height, spp, max_depth, verbose=True):
             value = [float(c) * float(light.get("intensity", 1.0)) for c in light.get("color", [1, 1, 1])]
             kind = light["type"]
             if kind == "point":
-                scene[f"light{ni}"] = {"type": "point", "position": [float(x) for x in world[:3, 3]],
-                                       "intensity": {"type": "rgb", "value": value}}
+                scene[f"light{ni}"] = point_light([float(x) for x in world[:3, 3]], value, sphere_radius)
             elif kind == "directional":
                 d = world[:3, :3] @ np.array([0.0, 0.0, -1.0])
                 scene[f"light{ni}"] = {"type": "directional",
@@ -346,6 +369,25 @@ def find_libllvm():
     return cands[0] if cands else None
 
 
+def positive_length(text):
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}")
+    if not (math.isfinite(value) and value > 0.0):
+        raise argparse.ArgumentTypeError(f"a radius must be positive and finite, not {text!r}")
+    return value
+
+
+def add_override_arguments(ap):
+    """lumiere's scene overrides that Mitsuba can render too."""
+    ap.add_argument("--brdf", choices=["lambert", "mirror"], default=None,
+                    help="every material's model, as lumiere's --brdf (default: as authored)")
+    ap.add_argument("--sphere-lights", type=positive_length, default=None, metavar="RADIUS",
+                    help="point lights become sphere lights of this radius and the same power, "
+                         "as lumiere's --lights area")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("scene", help="lumiere glTF scene (.gltf)")
@@ -362,6 +404,7 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=0, help="seed of the first pass")
     ap.add_argument("--png", help="also write a preview PNG (clamped, sRGB)")
     ap.add_argument("--quiet", action="store_true")
+    add_override_arguments(ap)
     args = ap.parse_args(argv)
 
     if args.variant.startswith("llvm") and not os.environ.get("DRJIT_LIBLLVM_PATH"):
@@ -373,7 +416,8 @@ def main(argv=None):
 
     g = Gltf(args.scene)
     t0 = time.perf_counter()
-    scene_dict = convert(mi, g, args.width, args.height, args.spp, args.max_depth, verbose=not args.quiet)
+    scene_dict = convert(mi, g, args.width, args.height, args.spp, args.max_depth, verbose=not args.quiet,
+                         brdf=args.brdf, sphere_radius=args.sphere_lights)
     scene = mi.load_dict(scene_dict)
     t1 = time.perf_counter()
 
