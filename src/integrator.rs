@@ -48,7 +48,10 @@
 //! own); β *= f cos θ / pdf. At the first hit the path splits into M =
 //! `indirect_samples` continuations, each the rest of a full path driven by
 //! `stream.split(m, M)` with β / M. Russian roulette starts after the third
-//! reflection (it only touches L3+), and `max_bounces` caps the reflections.
+//! reflection (it only touches L3+), with survival min(M β, 0.95): the
+//! sample's throughput, so that splitting does not shorten the
+//! continuations (which would undo it for L3+). `max_bounces` caps the
+//! reflections.
 //!
 //! ## Work skipped
 //!
@@ -461,6 +464,10 @@ struct Walk<'a> {
     terms: TermSet,
     last_reflection: u32,
     can_hit_lights: bool,
+    /// The continuations of the first hit this path is one of: its
+    /// throughput carries 1/M, which Russian roulette must not read as a
+    /// path that brings little.
+    splits: f32,
 }
 
 impl<'a> Walk<'a> {
@@ -482,6 +489,7 @@ impl<'a> Walk<'a> {
                 .unwrap_or(0)
                 .min(settings.max_bounces),
             can_hit_lights: context.lights.has_hittable_lights(),
+            splits: 1.0,
         }
     }
 
@@ -528,6 +536,7 @@ impl<'a> Walk<'a> {
         if let Some(split) = split.as_deref_mut() {
             split.first_rays = self.counts.total();
         }
+        self.splits = splits as f32;
         for m in 0..splits {
             let before = self.radiance;
             let stream = stream.split(m, splits);
@@ -905,9 +914,10 @@ impl<'a> Walk<'a> {
         };
         *throughput *= sample.weight;
 
-        // russian roulette after the third reflection
+        // russian roulette after the third reflection, on the throughput
+        // of the sample, not of one of its M continuations
         if next >= 3 {
-            let survival = throughput.max_element().min(0.95);
+            let survival = (*throughput * self.splits).max_element().min(0.95);
             if stream.uniform(base + dim::RUSSIAN_ROULETTE) >= survival {
                 self.counts.skipped.roulette += 1;
                 return None;
