@@ -310,8 +310,8 @@ pub fn reference(
     progress: &dyn Progress,
 ) -> Result<(ReferenceImage, PathBuf), BenchError> {
     let settings = &bench.settings;
-    let (path, cached) = match &bench.reference {
-        Some(path) => (path.clone(), true),
+    let (path, cached, given) = match &bench.reference {
+        Some(path) => (path.clone(), true, true),
         None => {
             let path = folder.join(reference_file_name(
                 &bench.scene,
@@ -319,7 +319,7 @@ pub fn reference(
                 bench.reference_spp,
             ));
             let exists = path.exists();
-            (path, exists)
+            (path, exists, false)
         }
     };
     if cached {
@@ -333,9 +333,15 @@ pub fn reference(
                 ),
             ));
         }
-        let label = path
+        let name = path
             .file_name()
-            .map_or_else(String::new, |n| n.to_string_lossy().into());
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+        // a cached reference was rendered as `reference_plan` says
+        let label = if given {
+            name
+        } else {
+            format!("{name}, cached")
+        };
         return Ok((
             ReferenceImage {
                 width,
