@@ -15,7 +15,9 @@ with lumiere's own definitions (src/metrics.rs):
         [--brdf lambert|mirror] [--sphere-lights RADIUS]
 
 (`--brdf` and `--sphere-lights` are lumiere's `--brdf` and `--lights area`,
-as in mitsuba_render.py.)
+as in mitsuba_render.py.) Unlike mitsuba_render.py's references, the timed
+renders use Russian roulette as lumiere does (`--rr-depth 3`): both end
+deep paths the same way, which only matters past L2.
 
 The CSV's header is `renderer,estimator,spp,seconds,rmse,relmse`, one row a
 render (renderer `mitsuba`, estimator `path-llvm` or `path-scalar`); a short
@@ -49,6 +51,10 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import mitsuba_render as mr  # noqa: E402  (the scene conversion, shared)
 
 RELMSE_EPSILON = 1e-2  # lumiere's src/metrics.rs
+# lumiere's Russian roulette starts after the third reflection (survival
+# min(max throughput, 0.95)); Mitsuba's rr_depth 3 starts it at the same
+# vertex with the same survival. It never touches max_depth <= 3 (L0-L2).
+LUMIERE_RR_DEPTH = 3
 
 
 def image_error(image, reference):
@@ -106,6 +112,8 @@ def main(argv=None):
     ap.add_argument("--spp-per-pass", type=int, default=None,
                     help="most samples per render call (default 256 for llvm, unlimited for scalar)")
     ap.add_argument("--seed", type=int, default=1, help="seed of the first timed pass (the warm-up uses 0)")
+    ap.add_argument("--rr-depth", type=int, default=LUMIERE_RR_DEPTH,
+                    help="Russian roulette after this many interactions (default 3, as lumiere)")
     mr.add_override_arguments(ap)
     args = ap.parse_args(argv)
 
@@ -133,7 +141,8 @@ def main(argv=None):
 
     g = mr.Gltf(args.scene)
     scene = mi.load_dict(mr.convert(mi, g, args.width, args.height, 1, args.max_depth, verbose=False,
-                                          brdf=args.brdf, sphere_radius=args.sphere_lights))
+                                          brdf=args.brdf, sphere_radius=args.sphere_lights,
+                                          rr_depth=args.rr_depth))
 
     per_pass = args.spp_per_pass or (256 if llvm else max(args.spp))
     seed = [args.seed]

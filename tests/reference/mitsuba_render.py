@@ -251,7 +251,10 @@ def point_light(position, intensity, sphere_radius):
             "emitter": {"type": "area", "radiance": {"type": "rgb", "value": radiance}}}
 
 
-def convert(mi, g, width, height, spp, max_depth, verbose=True, brdf=None, sphere_radius=None):
+def convert(mi, g, width, height, spp, max_depth, verbose=True, brdf=None, sphere_radius=None,
+            rr_depth=None):
+    """The Mitsuba scene dict of glTF `g`. `rr_depth` is Mitsuba's: Russian
+    roulette after that many interactions (None: none)."""
     j = g.j
     scene = {"type": "scene"}
     camera = None
@@ -349,8 +352,10 @@ def convert(mi, g, width, height, spp, max_depth, verbose=True, brdf=None, spher
                  "pixel_format": "rgb", "component_format": "float32",
                  "rfilter": {"type": "box"}},
     }
+    if rr_depth is None:
+        rr_depth = max(100, max_depth + 1)  # never
     scene["integrator"] = {"type": "path", "max_depth": max_depth,
-                           "rr_depth": max(100, max_depth + 1), "hide_emitters": False}
+                           "rr_depth": rr_depth, "hide_emitters": False}
     return scene
 
 
