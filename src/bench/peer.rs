@@ -17,6 +17,7 @@ use crate::scene::{Scene, builtin};
 use crate::settings::{BrdfOverride, LightMode, RenderSettings, Term};
 
 use super::csv::{ErrorRow, read_error_csv};
+use super::error_curve::ErrorBench;
 use super::{BenchError, Progress};
 
 /// Renderers lumiere can run for comparison.
@@ -129,18 +130,18 @@ fn find_script(peer: Peer) -> Option<PathBuf> {
     .find(|p| p.is_file())
 }
 
-/// Runs `peer` on `scene` at `settings`' size and terms and `counts` samples
+/// Runs `peer` on `bench`'s scene (`loaded`) at its size, terms and overrides, `counts` samples
 /// per pixel against `reference`, its CSV written into `folder`.
 pub fn run(
     peer: Peer,
-    scene: &str,
+    bench: &ErrorBench,
     loaded: &Scene,
-    settings: &RenderSettings,
     reference: &Path,
     counts: &[u32],
     folder: &Path,
     progress: &dyn Progress,
 ) -> Result<PeerRun, BenchError> {
+    let (scene, settings) = (bench.scene.as_str(), &bench.settings);
     let Some(script) = find_script(peer) else {
         return Ok(PeerRun::Skipped(format!("{} not found", peer.script())));
     };

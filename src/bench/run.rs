@@ -80,9 +80,8 @@ pub fn run(
             let counts = sample_counts(config.error.max_spp);
             match super::peer::run(
                 peer,
-                &config.error.scene,
+                &config.error,
                 &scene,
-                config.settings(),
                 &reference_path,
                 &counts,
                 folder,
