@@ -103,7 +103,7 @@ pub fn scene_overrides(scene: &Scene, settings: &RenderSettings) -> Result<Vec<S
         return Ok(arguments);
     }
     Err(format!(
-        "{} make lumiere render a scene the peer cannot, \
+        "{} make lumiere render a scene the peer cannot render, \
          so the peer's error against lumiere's reference would not be its noise",
         missing.join(" and ")
     ))
