@@ -310,19 +310,15 @@ pub fn reference(
     progress: &dyn Progress,
 ) -> Result<(ReferenceImage, PathBuf), BenchError> {
     let settings = &bench.settings;
-    let (path, cached, given) = match &bench.reference {
-        Some(path) => (path.clone(), true, true),
-        None => {
-            let path = folder.join(reference_file_name(
-                &bench.scene,
-                settings,
-                bench.reference_spp,
-            ));
-            let exists = path.exists();
-            (path, exists, false)
-        }
-    };
-    if cached {
+    let given = bench.reference.is_some();
+    let path = bench.reference.clone().unwrap_or_else(|| {
+        folder.join(reference_file_name(
+            &bench.scene,
+            settings,
+            bench.reference_spp,
+        ))
+    });
+    if given || path.exists() {
         let (width, height, radiance) = load_exr(&path)?;
         if (width, height) != (settings.width, settings.height) {
             return Err(BenchError::file(
@@ -357,8 +353,9 @@ pub fn reference(
     let mut film = Film::new(settings.width, settings.height);
     render(&context, &mut film, Budget::Samples(spp), |s| {
         progress.message(&format!(
-            "reference: {}/{spp} spp, Sobol, {} continuations per first hit",
-            s.samples_per_pixel, context.indirect_samples
+            "reference: {}/{}",
+            s.samples_per_pixel,
+            reference_label(spp, context.indirect_samples)
         ))
     });
     let radiance = film.radiance(settings.terms);
@@ -373,12 +370,17 @@ pub fn reference(
         width: settings.width,
         height: settings.height,
         radiance,
-        label: match context.indirect_samples {
-            1 => format!("{spp} spp, Sobol"),
-            m => format!("{spp} spp, Sobol, {m} continuations per first hit"),
-        },
+        label: reference_label(spp, context.indirect_samples),
     };
     Ok((image, path))
+}
+
+/// How a reference of `spp` samples with `continuations` per first hit was rendered.
+fn reference_label(spp: u32, continuations: u32) -> String {
+    match continuations {
+        1 => format!("{spp} spp, Sobol"),
+        m => format!("{spp} spp, Sobol, {m} continuations per first hit"),
+    }
 }
 
 /// Renders every estimator of `bench` progressively to its sample counts,
