@@ -273,6 +273,9 @@ pub struct RenderContext {
     /// Continuations per first hit the samples take: `settings.indirect_samples`,
     /// or the pilot's choice with `settings.auto_indirect_samples` (`splitting`).
     pub indirect_samples: u32,
+    /// How far the path log draws a ray that left the scene: one scene
+    /// diagonal (at least 1 m), found once, not per ray (it reads every vertex).
+    pub escape_length: f32,
 }
 
 impl RenderContext {
@@ -296,7 +299,9 @@ impl RenderContext {
             Some(camera) => CameraRays::new(camera, settings.width, settings.height),
             None => CameraRays::new(&scene.default_camera(), settings.width, settings.height),
         };
+        let escape_length = scene.bounds().diagonal().max(1.0);
         let mut context = Self {
+            escape_length,
             scene,
             accel,
             lights,
@@ -1027,8 +1032,7 @@ impl<'a> Walk<'a> {
 
     /// Where the drawing of a ray that left the scene stops: one scene diagonal away.
     fn escape_point(&self, ray: &Ray) -> Vec3 {
-        let length = self.context.scene.bounds().diagonal().max(1.0);
-        ray.origin + ray.direction.normalize_or_zero() * length
+        ray.origin + ray.direction.normalize_or_zero() * self.context.escape_length
     }
 
     /// Records a ray that looked for a light, which met emission `le` and

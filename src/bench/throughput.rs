@@ -151,8 +151,7 @@ pub fn replay_matches(context: &RenderContext, segment: &PathSegment) -> bool {
     let ends_where_logged = match context.accel.closest_hit(ray) {
         Some(hit) => ray.at(hit.t()) == segment.to,
         None => {
-            let length = context.scene.bounds().diagonal().max(1.0);
-            segment.to == ray.origin + ray.direction.normalize_or_zero() * length
+            segment.to == ray.origin + ray.direction.normalize_or_zero() * context.escape_length
         }
     };
     let emitter_where_logged = match segment.query {
@@ -208,6 +207,26 @@ pub struct Throughput {
     pub ratio: f64,
 }
 
+/// The rays of `passes` passes of `context` as [`record_segments`] logs them.
+pub fn recorded_rays(context: &RenderContext, passes: u32) -> Vec<RecordedRay> {
+    record_segments(context, passes)
+        .iter()
+        .map(RecordedRay::of)
+        .collect()
+}
+
+/// The fastest of `repeats` replays of `rays` through `accel`.
+pub fn fastest_replay(accel: &Accel, rays: &[RecordedRay], repeats: u32) -> Duration {
+    (0..repeats.max(1))
+        .map(|_| {
+            let start = Instant::now();
+            std::hint::black_box(replay(accel, std::hint::black_box(rays)));
+            start.elapsed()
+        })
+        .min()
+        .unwrap_or_default()
+}
+
 /// Times `passes` full passes of `context` and the replay of their rays,
 /// each the fastest of `repeats` runs, on the current rayon pool.
 pub fn measure(context: &RenderContext, passes: u32, repeats: u32) -> Throughput {
@@ -220,20 +239,8 @@ pub fn measure(context: &RenderContext, passes: u32, repeats: u32) -> Throughput
         renderer_time = renderer_time.min(stats.elapsed);
         renderer_rays = stats.rays;
     }
-    let rays: Vec<RecordedRay> = record_segments(context, passes)
-        .iter()
-        .map(RecordedRay::of)
-        .collect();
-    let fastest = |rays: &[RecordedRay]| {
-        (0..repeats)
-            .map(|_| {
-                let start = Instant::now();
-                std::hint::black_box(replay(&context.accel, std::hint::black_box(rays)));
-                start.elapsed()
-            })
-            .min()
-            .unwrap_or_default()
-    };
+    let rays = recorded_rays(context, passes);
+    let fastest = |rays: &[RecordedRay]| fastest_replay(&context.accel, rays, repeats);
     let traversal_time = fastest(&rays);
     let mut rows = vec![
         ThroughputRow {
