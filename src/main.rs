@@ -101,7 +101,7 @@ struct BenchArgs {
     /// Throughput: passes (samples per pixel) rendered and replayed.
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=4096))]
     throughput_passes: u32,
-    /// Throughput: timed runs of each measure; the fastest counts.
+    /// Throughput and the scaling section's triangle rows: timed runs of each measure; the fastest counts.
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=100))]
     repeats: u32,
     /// Scaling: the largest procedural scene (the counts are 10⁴, 10⁵, … up to it).
@@ -715,6 +715,7 @@ fn run_bench(args: &BenchArgs) -> Result<(), Failure> {
             thread_counts: args.thread_counts.iter().map(|&n| n as usize).collect(),
             triangle_image_size: 128,
             spp: args.scaling_spp,
+            repeats: args.repeats,
             settings,
         },
     };

@@ -67,6 +67,7 @@ fn tiny_config() -> BenchConfig {
             thread_counts: vec![1, 2],
             triangle_image_size: 16,
             spp: 1,
+            repeats: 1,
             settings,
         },
     }

@@ -233,7 +233,7 @@ impl BenchReport {
             let _ = writeln!(out, "scaling");
             let _ = writeln!(
                 out,
-                "  {:<15} {:>9} {:>9} {:>7} {:>8} {:>8} {:>14} {:>8} {:>8}",
+                "  {:<15} {:>9} {:>9} {:>7} {:>8} {:>8} {:>14} {:>8} {:>8} {:>7}",
                 "axis",
                 "triangles",
                 "image",
@@ -242,7 +242,8 @@ impl BenchReport {
                 "build s",
                 "peak/kept B/tri",
                 "s/spp",
-                "Mrays/s"
+                "Mrays/s",
+                "÷ trav"
             );
             for r in &self.scaling {
                 let memory = r
@@ -250,7 +251,7 @@ impl BenchReport {
                     .map_or_else(|| "—".into(), |(p, k)| format!("{p:.0}/{k:.0}"));
                 let _ = writeln!(
                     out,
-                    "  {:<15} {:>9} {:>9} {:>7} {:>8.3} {:>8.3} {:>14} {:>8.3} {:>8.2}",
+                    "  {:<15} {:>9} {:>9} {:>7} {:>8.3} {:>8.3} {:>14} {:>8.3} {:>8.2} {:>7}",
                     r.axis.label(),
                     r.triangles,
                     format!("{}×{}", r.width, r.height),
@@ -259,7 +260,9 @@ impl BenchReport {
                     r.build_seconds,
                     memory,
                     r.seconds_per_spp(),
-                    r.mrays_per_second()
+                    r.mrays_per_second(),
+                    r.traversal_ratio()
+                        .map_or_else(|| "—".into(), |q| format!("{q:.2}"))
                 );
             }
             if let Some(g) = self.scaling.iter().find(|r| r.axis == Axis::GltfTriangles) {

@@ -27,6 +27,7 @@ use crate::settings::RenderSettings;
 use crate::{Film, RenderContext};
 
 use super::memory::{MemoryUse, measure};
+use super::throughput::{fastest_replay, recorded_rays};
 use super::{BenchError, Progress, thread_pool};
 
 /// What a scaling row varies.
@@ -74,6 +75,8 @@ pub struct ScalingBench {
     pub triangle_image_size: u32,
     /// Samples per pixel of every timed render.
     pub spp: u32,
+    /// Timed runs of each triangle row's render and replay; the fastest counts.
+    pub repeats: u32,
     /// Terms, light sampling, … of every render (size replaced per row).
     pub settings: RenderSettings,
 }
@@ -94,11 +97,20 @@ pub struct ScalingRow {
     pub spp: u32,
     pub render_seconds: f64,
     pub rays: u64,
+    /// The same rays traced again by the BVH alone (the throughput
+    /// section's replay), for the triangle rows.
+    pub traversal_seconds: Option<f64>,
 }
 
 impl ScalingRow {
     pub fn mrays_per_second(&self) -> f64 {
         self.rays as f64 / self.render_seconds.max(1e-12) / 1e6
+    }
+
+    /// Renderer rays/s ÷ traversal rays/s of the same rays, if replayed.
+    pub fn traversal_ratio(&self) -> Option<f64> {
+        self.traversal_seconds
+            .map(|t| t / self.render_seconds.max(1e-12))
     }
 
     pub fn seconds_per_spp(&self) -> f64 {
@@ -116,7 +128,7 @@ impl ScalingRow {
 /// The scaling CSV text (memory columns empty when not measured).
 pub fn scaling_csv(rows: &[ScalingRow]) -> String {
     let mut text = String::from(
-        "axis,triangles,width,height,threads,load_seconds,build_seconds,peak_bytes_per_triangle,retained_bytes_per_triangle,spp,seconds_per_spp,mrays_per_second\n",
+        "axis,triangles,width,height,threads,load_seconds,build_seconds,peak_bytes_per_triangle,retained_bytes_per_triangle,spp,seconds_per_spp,mrays_per_second,renderer_over_traversal\n",
     );
     for r in rows {
         let (peak, retained) = r
@@ -124,8 +136,11 @@ pub fn scaling_csv(rows: &[ScalingRow]) -> String {
             .map_or((String::new(), String::new()), |(p, k)| {
                 (format!("{p:.1}"), format!("{k:.1}"))
             });
+        let ratio = r
+            .traversal_ratio()
+            .map_or(String::new(), |q| format!("{q:.3}"));
         text += &format!(
-            "{},{},{},{},{},{:.6},{:.6},{peak},{retained},{},{:.6},{:.3}\n",
+            "{},{},{},{},{},{:.6},{:.6},{peak},{retained},{},{:.6},{:.3},{ratio}\n",
             r.axis,
             r.triangles,
             r.width,
@@ -263,6 +278,18 @@ fn time_render(context: &RenderContext, spp: u32) -> (f64, u64) {
     (stats.elapsed.as_secs_f64(), stats.rays.total())
 }
 
+/// The fastest of `repeats` [`time_render`]s.
+fn fastest_render(context: &RenderContext, spp: u32, repeats: u32) -> (f64, u64) {
+    (0..repeats.max(1))
+        .map(|_| time_render(context, spp))
+        .fold(
+            (f64::INFINITY, 0),
+            |best, run| {
+                if run.0 < best.0 { run } else { best }
+            },
+        )
+}
+
 fn sized(settings: &RenderSettings, width: u32, height: u32) -> RenderSettings {
     RenderSettings {
         width,
@@ -289,7 +316,9 @@ fn triangle_row(
         Ok((context, loaded, start.elapsed().as_secs_f64()))
     });
     let (context, load_seconds, build_seconds) = built?;
-    let (render_seconds, rays) = time_render(&context, bench.spp);
+    let (render_seconds, rays) = fastest_render(&context, bench.spp, bench.repeats);
+    let replayed = recorded_rays(&context, bench.spp);
+    let traversal_seconds = fastest_replay(&context.accel, &replayed, bench.repeats).as_secs_f64();
     Ok(ScalingRow {
         axis,
         triangles: context.scene.triangles.len() as u64,
@@ -302,6 +331,7 @@ fn triangle_row(
         spp: bench.spp,
         render_seconds,
         rays,
+        traversal_seconds: Some(traversal_seconds),
     })
 }
 
@@ -352,6 +382,7 @@ pub fn measure_scaling(
             spp: bench.spp,
             render_seconds,
             rays,
+            traversal_seconds: None,
         })
     };
     for &size in &bench.resolutions {
