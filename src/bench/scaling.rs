@@ -282,12 +282,8 @@ fn time_render(context: &RenderContext, spp: u32) -> (f64, u64) {
 fn fastest_render(context: &RenderContext, spp: u32, repeats: u32) -> (f64, u64) {
     (0..repeats.max(1))
         .map(|_| time_render(context, spp))
-        .fold(
-            (f64::INFINITY, 0),
-            |best, run| {
-                if run.0 < best.0 { run } else { best }
-            },
-        )
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .unwrap_or_default()
 }
 
 fn sized(settings: &RenderSettings, width: u32, height: u32) -> RenderSettings {
