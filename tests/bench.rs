@@ -131,6 +131,17 @@ fn a_tiny_bench_writes_every_file_with_its_columns() {
     );
     let threads: Vec<&str> = rows[5..].iter().map(|r| r[4].as_str()).collect();
     assert_eq!(threads, ["1", "2"]);
+    // the triangle rows replay their rays; the others leave the column empty
+    assert!(header.ends_with(",renderer_over_traversal"), "{header}");
+    for row in &rows {
+        let ratio = row.last().unwrap();
+        if row[0].ends_with("triangles") {
+            let ratio: f64 = ratio.parse().unwrap();
+            assert!(ratio > 0.0 && ratio.is_finite(), "{row:?}");
+        } else {
+            assert!(ratio.is_empty(), "{row:?}");
+        }
+    }
     // the glTF file is removed after loading
     assert!(!folder.join("scaling-500.gltf").exists());
     assert!(report.summary().contains("renderer ÷ traversal"));
