@@ -145,6 +145,12 @@ fn a_tiny_bench_writes_every_file_with_its_columns() {
     // the glTF file is removed after loading
     assert!(!folder.join("scaling-500.gltf").exists());
     assert!(report.summary().contains("renderer ÷ traversal"));
+    // the machine comes first: a ratio to a vectorised peer depends on its vectors
+    let first_line = report.summary().lines().next().unwrap_or("").to_string();
+    assert!(
+        first_line.starts_with("machine: ") && first_line.contains(" threads, widest vectors "),
+        "{first_line}"
+    );
 
     // a second run finds the cached reference instead of rendering one
     let references = |dir: &Path| {

@@ -19,6 +19,7 @@
 
 pub mod csv;
 pub mod error_curve;
+pub mod machine;
 pub mod memory;
 pub mod peer;
 pub mod plot;

@@ -45,6 +45,8 @@ impl BenchConfig {
 /// What a bench measured and wrote.
 #[derive(Clone, Debug, Default)]
 pub struct BenchReport {
+    /// The processor, threads and widest vectors the bench ran on ([`super::machine`]).
+    pub machine: String,
     pub error_rows: Vec<ErrorRow>,
     pub curves: Vec<CurveSummary>,
     /// What the curves were measured against (how it was rendered, or the file).
@@ -70,7 +72,10 @@ pub fn run(
         peer_rows.extend(read_error_csv(path)?);
     }
     let scene = Arc::new(builtin::load(&config.error.scene)?);
-    let mut report = BenchReport::default();
+    let mut report = BenchReport {
+        machine: super::machine::describe(),
+        ..BenchReport::default()
+    };
     if config.sections.contains(&Section::Error) {
         let (reference_image, reference_path) = reference(&config.error, &scene, folder, progress)?;
         report.files.push(reference_path.clone());
@@ -164,6 +169,9 @@ impl BenchReport {
     /// The summary table printed at the end of a bench.
     pub fn summary(&self) -> String {
         let mut out = String::new();
+        if !self.machine.is_empty() {
+            let _ = writeln!(out, "machine: {}", self.machine);
+        }
         if !self.curves.is_empty() {
             let _ = writeln!(
                 out,
