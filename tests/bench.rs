@@ -543,3 +543,27 @@ fn the_reference_spends_its_budget_on_the_least_noisy_estimator() {
     let (context, spp) = reference_plan(&scene, &direct, 1000);
     assert_eq!((context.indirect_samples, spp), (1, 1000));
 }
+
+#[test]
+fn a_scene_without_light_measures_no_curve_and_says_why() {
+    // one triangle, no light: the reference is black and every render matches it
+    let folder = scratch("black");
+    let mut config = tiny_config();
+    config.sections = vec![Section::Error];
+    config.error.scene = "tests/data/gltf/cameras.gltf".into();
+    config.error.max_spp = 4;
+    config.error.reference_spp = 16;
+    config.peer = Some(lumiere::bench::peer::Peer::Mitsuba);
+    let report = run(&config, &folder, &Silent).unwrap();
+    assert!(report.curves.is_empty(), "{:?}", report.curves);
+    assert_eq!(report.notes.len(), 1, "{:?}", report.notes);
+    assert!(report.notes[0].contains("the reference is black"));
+    let summary = report.summary();
+    assert!(summary.contains("error curves not measured"), "{summary}");
+    assert!(!summary.contains("0.00 s"), "{summary}");
+    // the files are still written: the reference, an empty CSV, the plot's frame
+    let (header, rows) = csv_rows(&folder.join("error.csv"));
+    assert_eq!(header, "renderer,estimator,spp,seconds,rmse,relmse");
+    assert!(rows.is_empty());
+    assert!(folder.join("error.png").is_file());
+}

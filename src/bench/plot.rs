@@ -122,6 +122,9 @@ pub fn error_plot(rows: &[ErrorRow], path: &Path) -> Result<(), BenchError> {
                 .label(format!("{renderer} {estimator}"))
                 .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], c.stroke_width(2)));
         }
+        if rows.is_empty() {
+            return Ok(()); // no curve: the frame alone, without an empty legend
+        }
         chart
             .configure_series_labels()
             .position(SeriesLabelPosition::UpperRight)

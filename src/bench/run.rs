@@ -80,8 +80,19 @@ pub fn run(
         let (reference_image, reference_path) = reference(&config.error, &scene, folder, progress)?;
         report.files.push(reference_path.clone());
         report.reference = Some(reference_image.label.clone());
-        let mut rows = measure_curves(&config.error, &scene, &reference_image, progress);
-        if let Some(peer) = config.peer {
+        let black = is_black(&reference_image.radiance);
+        let mut rows = Vec::new();
+        if black {
+            // relMSE against a black image is 0 from the first sample: no curve to measure
+            report.notes.push(
+                "error curves not measured: the reference is black (no light reaches the \
+                 camera under these settings), so every render matches it at once"
+                    .into(),
+            );
+        } else {
+            rows = measure_curves(&config.error, &scene, &reference_image, progress);
+        }
+        if let Some(peer) = config.peer.filter(|_| !black) {
             let counts = sample_counts(config.error.max_spp);
             match super::peer::run(
                 peer,
@@ -128,6 +139,11 @@ pub fn run(
         report.scaling = rows;
     }
     Ok(report)
+}
+
+/// Whether every pixel of a reference is black: the scene sends no light to the camera.
+fn is_black(radiance: &[glam::Vec3]) -> bool {
+    radiance.iter().all(|p| p.max_element() <= 0.0)
 }
 
 /// The table of lumiere's time to each threshold ÷ `peer`'s, one row per lumiere curve.
