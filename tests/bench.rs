@@ -567,3 +567,39 @@ fn a_scene_without_light_measures_no_curve_and_says_why() {
     assert!(rows.is_empty());
     assert!(folder.join("error.png").is_file());
 }
+
+#[test]
+fn a_file_without_a_camera_gives_the_peer_lumieres_framing_camera() {
+    use lumiere::bench::peer::camera_arguments;
+    use lumiere::scene::Projection;
+    // the Cornell box has its camera: the peer reads it from the file
+    assert_eq!(camera_arguments(&builtin::cornell()), Ok(vec![]));
+
+    let mut scene = builtin::cornell();
+    scene.cameras.clear();
+    let arguments = camera_arguments(&scene).unwrap();
+    assert_eq!(arguments[0], "--camera");
+    let values: Vec<f32> = arguments[1]
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    assert_eq!(values.len(), 13);
+    let framing = scene.default_camera();
+    let world = framing.world_from_camera;
+    // rows of [R | t]: row i holds the i-th coordinate of each axis, then of the origin
+    for row in 0..3 {
+        let expected = [
+            world.matrix3.x_axis[row],
+            world.matrix3.y_axis[row],
+            world.matrix3.z_axis[row],
+            world.translation[row],
+        ];
+        assert_eq!(values[4 * row..4 * row + 4], expected, "row {row}");
+    }
+    let Projection::Perspective { yfov } = framing.projection else {
+        panic!("the framing camera is a perspective one");
+    };
+    assert_eq!(values[12], yfov);
+    // the framing camera stands back from the box, on its +z side
+    assert!(values[11] > scene.bounds().max.z, "{values:?}");
+}

@@ -4,7 +4,8 @@
 //! given size and sample counts with a path tracer of `--max-depth` segments
 //! (3 = L0 + L1 + L2, Mitsuba's convention), measures each image against
 //! `--reference <ref.exr>` and writes `<out>.csv` with the columns of
-//! [`super::csv::ERROR_COLUMNS`]. A missing interpreter, script or package
+//! [`super::csv::ERROR_COLUMNS`]. A file without a camera, which lumiere
+//! frames itself, comes with `--camera`: lumiere's framing camera. A missing interpreter, script or package
 //! skips the peer with a message; it never fails the bench.
 
 use std::fmt;
@@ -13,7 +14,7 @@ use std::process::Command;
 use std::str::FromStr;
 
 use crate::lights::sphere_light_radius;
-use crate::scene::{Scene, builtin};
+use crate::scene::{Projection, Scene, builtin};
 use crate::settings::{BrdfOverride, LightMode, RenderSettings, Term};
 
 use super::csv::{ErrorRow, read_error_csv};
@@ -109,6 +110,33 @@ pub fn scene_overrides(scene: &Scene, settings: &RenderSettings) -> Result<Vec<S
     ))
 }
 
+/// The peer's `--camera` argument for a scene that has no camera of its
+/// own, which lumiere frames itself (`Scene::default_camera`): that framing
+/// camera, world from camera by rows, then yfov. Empty when the file has a
+/// camera (the peer reads it); `Err` for a camera the peer cannot take.
+pub fn camera_arguments(scene: &Scene) -> Result<Vec<String>, String> {
+    if !scene.cameras.is_empty() {
+        return Ok(Vec::new());
+    }
+    let camera = scene.default_camera();
+    let Projection::Perspective { yfov } = camera.projection else {
+        return Err("lumiere's framing camera is not a perspective one".into());
+    };
+    let world = camera.world_from_camera;
+    let columns = [
+        world.matrix3.x_axis,
+        world.matrix3.y_axis,
+        world.matrix3.z_axis,
+        world.translation,
+    ];
+    let mut values: Vec<String> = Vec::with_capacity(13);
+    for row in 0..3 {
+        values.extend(columns.iter().map(|c| c[row].to_string()));
+    }
+    values.push(yfov.to_string());
+    Ok(vec!["--camera".into(), values.join(",")])
+}
+
 /// The scene as a glTF file the peer can read: the file itself, or the
 /// built-in Cornell box written into `folder`.
 fn scene_file(scene: &str, folder: &Path) -> Result<PathBuf, BenchError> {
@@ -161,6 +189,15 @@ pub fn run(
             )));
         }
     };
+    let camera = match camera_arguments(loaded) {
+        Ok(arguments) => arguments,
+        Err(reason) => {
+            return Ok(PeerRun::Skipped(format!(
+                "{} not run: {reason}",
+                peer.label()
+            )));
+        }
+    };
     let scene_path = scene_file(scene, folder)?;
     let csv = folder.join(format!("{}.csv", peer.label()));
     let spp: Vec<String> = counts.iter().map(u32::to_string).collect();
@@ -175,6 +212,7 @@ pub fn run(
         .args(["--max-depth", &depth.to_string()])
         .args(["--spp", &spp.join(",")])
         .args(&overrides)
+        .args(&camera)
         .arg("--out")
         .arg(&csv)
         .output();

@@ -142,7 +142,7 @@ def main(argv=None):
     g = mr.Gltf(args.scene)
     scene = mi.load_dict(mr.convert(mi, g, args.width, args.height, 1, args.max_depth, verbose=False,
                                           brdf=args.brdf, sphere_radius=args.sphere_lights,
-                                          rr_depth=args.rr_depth))
+                                          rr_depth=args.rr_depth, given_camera=args.camera))
 
     per_pass = args.spp_per_pass or (256 if llvm else max(args.spp))
     seed = [args.seed]

@@ -252,9 +252,11 @@ def point_light(position, intensity, sphere_radius):
 
 
 def convert(mi, g, width, height, spp, max_depth, verbose=True, brdf=None, sphere_radius=None,
-            rr_depth=None):
+            rr_depth=None, given_camera=None):
     """The Mitsuba scene dict of glTF `g`. `rr_depth` is Mitsuba's: Russian
-    roulette after that many interactions (None: none)."""
+    roulette after that many interactions (None: none). `given_camera`, a
+    (world-from-camera 4x4, yfov) pair in glTF's camera convention, stands
+    in for a file without a camera (lumiere then frames the scene itself)."""
     j = g.j
     scene = {"type": "scene"}
     camera = None
@@ -314,6 +316,10 @@ def convert(mi, g, width, height, spp, max_depth, verbose=True, brdf=None, spher
             n_emitters += 1
             if verbose:
                 print(f"  {kind} light {nname!r}: {value} at {world[:3, 3].tolist()}", file=sys.stderr)
+    if camera is None and given_camera is not None:
+        world, yfov = given_camera
+        j = dict(j, cameras=[{"type": "perspective", "perspective": {"yfov": yfov}}])
+        camera = (0, world, "given")
     if camera is None:
         raise GltfError("the scene has no camera")
     if n_emitters == 0:
@@ -384,6 +390,23 @@ def positive_length(text):
     return value
 
 
+def camera_argument(text):
+    """`--camera`: 13 numbers, a world-from-camera matrix's three rows of four
+    (glTF's convention: the camera looks down its -Z, +Y up) and the
+    vertical field of view in radians."""
+    try:
+        values = [float(x) for x in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not numbers: {text!r}")
+    if len(values) != 13 or not all(math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError(f"13 finite numbers expected, not {text!r}")
+    if not 0.0 < values[12] < math.pi:
+        raise argparse.ArgumentTypeError(f"yfov {values[12]} is not in (0, pi)")
+    world = np.eye(4)
+    world[:3, :] = np.array(values[:12]).reshape(3, 4)
+    return world, values[12]
+
+
 def add_override_arguments(ap):
     """lumiere's scene overrides that Mitsuba can render too."""
     ap.add_argument("--brdf", choices=["lambert", "mirror"], default=None,
@@ -391,6 +414,10 @@ def add_override_arguments(ap):
     ap.add_argument("--sphere-lights", type=positive_length, default=None, metavar="RADIUS",
                     help="point lights become sphere lights of this radius and the same power, "
                          "as lumiere's --lights area")
+    ap.add_argument("--camera", type=camera_argument, default=None,
+                    metavar="R00,R01,R02,T0,R10,...,T2,YFOV",
+                    help="the camera of a file that has none: lumiere's framing camera, "
+                         "world from camera by rows (glTF's convention) and yfov in radians")
 
 
 def main(argv=None):
@@ -422,7 +449,7 @@ def main(argv=None):
     g = Gltf(args.scene)
     t0 = time.perf_counter()
     scene_dict = convert(mi, g, args.width, args.height, args.spp, args.max_depth, verbose=not args.quiet,
-                         brdf=args.brdf, sphere_radius=args.sphere_lights)
+                         brdf=args.brdf, sphere_radius=args.sphere_lights, given_camera=args.camera)
     scene = mi.load_dict(scene_dict)
     t1 = time.perf_counter()
 
