@@ -98,7 +98,7 @@ def parse_spp(text):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("scene", help="lumiere glTF scene (.gltf)")
+    ap.add_argument("scene", help="lumiere glTF scene (.gltf or .glb)")
     ap.add_argument("--reference", required=True, help="reference EXR (linear RGB), same size")
     ap.add_argument("--width", type=int, required=True)
     ap.add_argument("--height", type=int, required=True)

@@ -53,6 +53,7 @@ import json
 import math
 import os
 import re
+import struct
 import sys
 import time
 
@@ -74,23 +75,56 @@ class GltfError(Exception):
 
 class Gltf:
     def __init__(self, path):
-        if path.lower().endswith(".glb"):
-            raise GltfError("binary .glb files are not supported; use .gltf")
-        with open(path, encoding="utf-8") as f:
-            self.j = json.load(f)
         self.dir = os.path.dirname(os.path.abspath(path))
         self._buffers = {}
+        self._binary_chunk = None
+        with open(path, "rb") as f:
+            data = f.read()
+        if data[:4] == b"glTF":
+            self.j = self._read_glb(data)
+        else:
+            self.j = json.loads(data.decode("utf-8"))
         for ext in self.j.get("extensionsRequired", []):
             if ext not in ("KHR_lights_punctual", "KHR_materials_emissive_strength"):
                 raise GltfError(f"required extension {ext} is not supported")
+        for ext in self.j.get("extensionsRequired", []):
+            if ext not in ("KHR_lights_punctual", "KHR_materials_emissive_strength"):
+                raise GltfError(f"required extension {ext} is not supported")
+
+    def _read_glb(self, data):
+        """The JSON of a binary glTF (.glb), keeping its BIN chunk: a
+        12-byte header (magic, version 2, length), then chunks of (length,
+        type, bytes), the JSON chunk first."""
+        if len(data) < 20:
+            raise GltfError("the .glb file is shorter than its header")
+        magic, version, length = struct.unpack_from("<4sII", data, 0)
+        if version != 2:
+            raise GltfError(f"glb version {version} is not 2")
+        if length > len(data):
+            raise GltfError(f"the .glb header says {length} bytes, the file has {len(data)}")
+        chunks, offset = [], 12
+        while offset + 8 <= length:
+            size, kind = struct.unpack_from("<I4s", data, offset)
+            body = data[offset + 8:offset + 8 + size]
+            if len(body) < size:
+                raise GltfError(f"a .glb chunk of {size} bytes runs past the end of the file")
+            chunks.append((kind, body))
+            offset += 8 + size
+        if not chunks or chunks[0][0] != b"JSON":
+            raise GltfError("the .glb file does not start with a JSON chunk")
+        self._binary_chunk = next((body for kind, body in chunks[1:] if kind == b"BIN\0"), None)
+        return json.loads(chunks[0][1].decode("utf-8"))
 
     def buffer(self, i):
         if i not in self._buffers:
             b = self.j["buffers"][i]
             uri = b.get("uri")
             if uri is None:
-                raise GltfError("buffers without a uri (GLB) are not supported")
-            if uri.startswith("data:"):
+                # the .glb's own binary chunk (only buffer 0 may lack a uri)
+                if i != 0 or self._binary_chunk is None:
+                    raise GltfError(f"buffer {i} has no uri and there is no .glb binary chunk")
+                data = self._binary_chunk
+            elif uri.startswith("data:"):
                 m = re.match(r"data:[^;,]*;base64,(.*)", uri, re.S)
                 if not m:
                     raise GltfError("only base64 data URIs are supported")
@@ -422,7 +456,7 @@ def add_override_arguments(ap):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("scene", help="lumiere glTF scene (.gltf)")
+    ap.add_argument("scene", help="lumiere glTF scene (.gltf or .glb)")
     ap.add_argument("--max-depth", type=int, required=True,
                     help="maximum number of path segments (1 = L0, 2 = L0+L1, 3 = L0+L1+L2)")
     ap.add_argument("--spp", type=int, default=4096, help="samples per pixel")
