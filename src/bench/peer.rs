@@ -5,8 +5,9 @@
 //! (3 = L0 + L1 + L2, Mitsuba's convention), measures each image against
 //! `--reference <ref.exr>` and writes `<out>.csv` with the columns of
 //! [`super::csv::ERROR_COLUMNS`]. A file without a camera, which lumiere
-//! frames itself, comes with `--camera`: lumiere's framing camera. A missing interpreter, script or package
-//! skips the peer with a message; it never fails the bench.
+//! frames itself, comes with `--camera`: lumiere's framing camera. A
+//! missing interpreter, script or package skips the peer with a message; it
+//! never fails the bench.
 
 use std::fmt;
 use std::path::{Path, PathBuf};
