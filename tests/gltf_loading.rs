@@ -969,3 +969,27 @@ fn a_mesh_placed_too_many_times_is_refused_before_its_geometry_is_read() {
         started.elapsed()
     );
 }
+
+#[test]
+fn the_textured_cornell_box_reads_its_checker_in_linear_values() {
+    // the file the Mitsuba texture check renders (tests/reference/README.md)
+    let scene = load(Path::new("tests/data/cornell-textured.gltf")).unwrap();
+    let checker = scene
+        .materials
+        .iter()
+        .find(|m| m.name == "checker")
+        .expect("the back wall's material");
+    let texture = &scene.textures[checker.base_color_texture.unwrap().texture as usize];
+    // texel centres of the 4×4 image: (0, 0) yellow, (1, 0) blue
+    let yellow = texture.sample(Vec2::new(0.125, 0.125));
+    let blue = texture.sample(Vec2::new(0.375, 0.125));
+    let expected = |rgb: [u8; 3]| Vec3::from(rgb.map(|c| srgb_to_linear(c as f32 / 255.0)));
+    assert!(
+        (yellow - expected([230, 200, 40])).abs().max_element() < 1e-5,
+        "{yellow}"
+    );
+    assert!(
+        (blue - expected([40, 90, 220])).abs().max_element() < 1e-5,
+        "{blue}"
+    );
+}

@@ -215,9 +215,12 @@ def material_info(g, index, brdf=None):
         mat = g.j["materials"][index]
     name = mat.get("name", f"material {index}")
     pbr = mat.get("pbrMetallicRoughness", {})
-    for key in ("baseColorTexture", "metallicRoughnessTexture"):
-        if key in pbr:
-            raise GltfError(f"{name}: textures are not supported")
+    if "metallicRoughnessTexture" in pbr:
+        raise GltfError(f"{name}: metallicRoughnessTexture is not supported")
+    texture = pbr.get("baseColorTexture")
+    if texture is not None and "extensions" in texture:
+        raise GltfError(f"{name}: base colour texture extensions (KHR_texture_transform) "
+                        "are not supported")
     for key in ("emissiveTexture", "normalTexture", "occlusionTexture"):
         if key in mat:
             raise GltfError(f"{name}: {key} is not supported")
@@ -238,11 +241,58 @@ def material_info(g, index, brdf=None):
     emission = [float(c) * strength for c in mat.get("emissiveFactor", [0, 0, 0])]
     if max(emission) <= 0.0:
         emission = None
-    return kind, base, emission, bool(mat.get("doubleSided", False))
+    return kind, base, emission, bool(mat.get("doubleSided", False)), texture
 
 
-def bsdf_dict(kind, rgb):
-    color = {"type": "rgb", "value": rgb}
+_WRAP = {10497: "repeat", 33648: "mirror", 33071: "clamp"}
+
+
+def image_bytes(g, index):
+    """The encoded bytes (PNG or JPEG) of glTF image `index`."""
+    image = g.j["images"][index]
+    if "bufferView" in image:
+        view = g.j["bufferViews"][image["bufferView"]]
+        start = view.get("byteOffset", 0)
+        return g.buffer(view["buffer"])[start:start + view["byteLength"]]
+    uri = image.get("uri", "")
+    if uri.startswith("data:"):
+        m = re.match(r"data:[^;,]*;base64,(.*)", uri, re.S)
+        if not m:
+            raise GltfError(f"image {index}: only base64 data URIs are supported")
+        return base64.b64decode(m.group(1))
+    from urllib.parse import unquote
+    with open(os.path.join(g.dir, unquote(uri)), "rb") as f:
+        return f.read()
+
+
+def base_color_texture(mi, g, texture, factor):
+    """A Mitsuba `bitmap` of glTF texture reference `texture` times the
+    base colour `factor`: decoded to linear RGB (sRGB colour texels), then
+    filtered bilinearly in linear values, as lumiere does; glTF's uv
+    (0, 0) is the image's top-left corner, as Mitsuba's is."""
+    import tempfile
+    tex = g.j["textures"][texture["index"]]
+    if "source" not in tex:
+        raise GltfError(f"texture {texture['index']} has no source image")
+    sampler = g.j.get("samplers", [])[tex["sampler"]] if "sampler" in tex else {}
+    wrap_s, wrap_t = sampler.get("wrapS", 10497), sampler.get("wrapT", 10497)
+    if wrap_s != wrap_t or wrap_s not in _WRAP:
+        raise GltfError(f"texture {texture['index']}: wrap modes {wrap_s}, {wrap_t} differ per axis; "
+                        "Mitsuba's bitmap has one")
+    data = image_bytes(g, tex["source"])
+    with tempfile.NamedTemporaryFile(suffix=".img") as f:
+        f.write(data)
+        f.flush()
+        bitmap = mi.Bitmap(f.name)
+    # 8-bit colour texels are sRGB-encoded: linear values, as lumiere keeps them
+    linear = bitmap.convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False)
+    texels = np.array(linear, dtype=np.float32)[:, :, :3] * np.array(factor, dtype=np.float32)
+    return {"type": "bitmap", "bitmap": mi.Bitmap(texels, pixel_format=mi.Bitmap.PixelFormat.RGB),
+            "raw": True, "filter_type": "bilinear", "wrap_mode": _WRAP[wrap_s]}
+
+
+def bsdf_dict(kind, rgb, texture=None):
+    color = {"type": "rgb", "value": rgb} if texture is None else texture
     if kind == "lambert":
         inner = {"type": "diffuse", "reflectance": color}
     else:
@@ -250,7 +300,7 @@ def bsdf_dict(kind, rgb):
     return {"type": "twosided", "material": inner}
 
 
-def build_mesh(mi, name, positions, normals, faces, bsdf, emission):
+def build_mesh(mi, name, positions, normals, faces, bsdf, emission, texcoords=None):
     """A Mitsuba mesh from world-space arrays. Emitting meshes get no vertex
     normals, so that Mitsuba's emitting side is the one given by the winding
     (its face normal is cross(p1 - p0, p2 - p0), glTF's front face)."""
@@ -259,7 +309,8 @@ def build_mesh(mi, name, positions, normals, faces, bsdf, emission):
     if emission is not None:
         props["emitter"] = mi.load_dict({"type": "area", "radiance": {"type": "rgb", "value": emission}})
         normals = None
-    mesh = mi.Mesh(name, len(positions), len(faces), props=props, has_vertex_normals=normals is not None)
+    mesh = mi.Mesh(name, len(positions), len(faces), props=props, has_vertex_normals=normals is not None,
+                   has_vertex_texcoords=texcoords is not None)
     params = mi.traverse(mesh)
 
     def put(key, array, dtype):
@@ -269,6 +320,8 @@ def build_mesh(mi, name, positions, normals, faces, bsdf, emission):
     put("faces", faces, np.uint32)
     if normals is not None:
         put("vertex_normals", normals, np.float32)
+    if texcoords is not None:
+        put("vertex_texcoords", texcoords, np.float32)
     params.update()
     return mesh
 
@@ -322,14 +375,22 @@ def convert(mi, g, width, height, spp, max_depth, verbose=True, brdf=None, spher
                 if "NORMAL" in prim["attributes"]:
                     nrm = g.accessor(prim["attributes"]["NORMAL"]).astype(np.float64) @ nmat.T
                     nrm /= np.linalg.norm(nrm, axis=1, keepdims=True)
-                kind, rgb, emission, double_sided = material_info(g, prim.get("material"), brdf)
+                kind, rgb, emission, double_sided, texture = material_info(g, prim.get("material"), brdf)
+                uv, color = None, None
+                if texture is not None:
+                    uv_set = f"TEXCOORD_{texture.get('texCoord', 0)}"
+                    if uv_set not in prim["attributes"]:
+                        raise GltfError(f"{nname}: its texture reads {uv_set}, which it lacks")
+                    uv = g.accessor(prim["attributes"][uv_set]).astype(np.float64)
+                    color = base_color_texture(mi, g, texture, rgb)
                 if emission is not None:
                     if double_sided:
                         raise GltfError(f"{nname}: double-sided emitters are not supported "
                                         "(Mitsuba's area emitter is one-sided)")
                     n_emitters += 1
                 key = f"mesh{ni}_{pi}"
-                scene[key] = build_mesh(mi, f"{nname}/{pi}", pos, nrm, faces, bsdf_dict(kind, rgb), emission)
+                scene[key] = build_mesh(mi, f"{nname}/{pi}", pos, nrm, faces, bsdf_dict(kind, rgb, color),
+                                        emission, uv)
                 if verbose:
                     print(f"  mesh {nname!r}: {len(faces)} triangles, {kind} {rgb}"
                           + (f", emits {emission}" if emission else ""), file=sys.stderr)
