@@ -422,37 +422,49 @@ def convert(mi, g, width, height, spp, max_depth, verbose=True, brdf=None, spher
 
     cam_index, cam_world, cam_name = camera
     cam = j["cameras"][cam_index]
-    if cam.get("type") != "perspective":
-        raise GltfError("only perspective cameras are supported")
-    persp = cam["perspective"]
-    yfov = float(persp["yfov"])
-    aspect = persp.get("aspectRatio")
-    if aspect is not None and abs(aspect - width / height) > 1e-3:
-        print(f"warning: the camera's aspectRatio {aspect} differs from {width}x{height}; "
-              "the film's aspect ratio is used, yfov kept", file=sys.stderr)
+    kind = cam.get("type")
+    if kind not in ("perspective", "orthographic"):
+        raise GltfError(f"camera type {kind!r} is not supported")
     # Mitsuba's camera looks down its +Z with +X to the image's left; glTF's
     # looks down -Z with +X to the right: a 180 degree turn about Y maps one
     # onto the other (no mirroring).
     to_world = cam_world @ np.diag([-1.0, 1.0, -1.0, 1.0])
     # Remove any scale from the camera's frame (glTF cameras ignore it).
     to_world[:3, :3] = to_world[:3, :3] / np.linalg.norm(to_world[:3, :3], axis=0)
-    znear = float(persp.get("znear", 1e-3))
-    zfar = float(persp.get("zfar", 1e4))
-    if verbose:
-        print(f"  camera {cam_name!r}: yfov {math.degrees(yfov):.4f} deg, at {cam_world[:3, 3].tolist()}, "
-              f"looking along {(-cam_world[:3, 2]).tolist()}", file=sys.stderr)
-    scene["sensor"] = {
-        "type": "perspective",
-        "fov_axis": "y",
-        "fov": math.degrees(yfov),
-        "near_clip": znear,
-        "far_clip": zfar,
-        "to_world": mi.ScalarTransform4f(to_world.tolist()),
+    projection = cam[kind]
+    aspect = projection.get("aspectRatio")
+    if aspect is not None and abs(aspect - width / height) > 1e-3:
+        print(f"warning: the camera's aspectRatio {aspect} differs from {width}x{height}; "
+              "the film's aspect ratio is used, the vertical extent kept", file=sys.stderr)
+    sensor = {
+        "near_clip": float(projection.get("znear", 1e-3)),
+        "far_clip": float(projection.get("zfar", 1e4)),
         "sampler": {"type": "independent", "sample_count": spp},
         "film": {"type": "hdrfilm", "width": width, "height": height,
                  "pixel_format": "rgb", "component_format": "float32",
                  "rfilter": {"type": "box"}},
     }
+    if kind == "perspective":
+        yfov = float(projection["yfov"])
+        sensor.update({"type": "perspective", "fov_axis": "y", "fov": math.degrees(yfov)})
+        view = f"yfov {math.degrees(yfov):.4f} deg"
+    else:
+        # lumiere keeps glTF's ymag (half the visible height) and takes the
+        # width from the film; Mitsuba's orthographic view spans x in [-1, 1]
+        # and y in [-1/aspect, 1/aspect] of its camera space, scaled here
+        ymag = float(projection["ymag"])
+        if not (math.isfinite(ymag) and ymag > 0.0):
+            raise GltfError(f"orthographic camera {cam_name!r}: ymag {ymag} is not positive")
+        half_width = ymag * width / height
+        to_world = to_world @ np.diag([half_width, half_width, 1.0, 1.0])
+        sensor["type"] = "orthographic"
+        sensor["near_clip"] = max(sensor["near_clip"], 1e-3)
+        view = f"orthographic, {2 * half_width:.4g} x {2 * ymag:.4g} m"
+    sensor["to_world"] = mi.ScalarTransform4f(to_world.tolist())
+    if verbose:
+        print(f"  camera {cam_name!r}: {view}, at {cam_world[:3, 3].tolist()}, "
+              f"looking along {(-cam_world[:3, 2]).tolist()}", file=sys.stderr)
+    scene["sensor"] = sensor
     if rr_depth is None:
         rr_depth = max(100, max_depth + 1)  # never
     scene["integrator"] = {"type": "path", "max_depth": max_depth,
