@@ -972,7 +972,8 @@ fn a_mesh_placed_too_many_times_is_refused_before_its_geometry_is_read() {
 
 #[test]
 fn the_textured_cornell_box_reads_its_checker_in_linear_values() {
-    // the file the Mitsuba texture check renders (tests/reference/README.md)
+    // the file the Mitsuba texture check renders (tests/reference/README.md);
+    // the light reads the same checker as its emissive texture
     let scene = load(Path::new("tests/data/cornell-textured.gltf")).unwrap();
     let checker = scene
         .materials
@@ -991,5 +992,14 @@ fn the_textured_cornell_box_reads_its_checker_in_linear_values() {
     assert!(
         (blue - expected([40, 90, 220])).abs().max_element() < 1e-5,
         "{blue}"
+    );
+    let light = scene
+        .materials
+        .iter()
+        .find(|m| m.is_emissive())
+        .expect("the light");
+    assert_eq!(
+        light.emission_texture.map(|t| t.texture),
+        checker.base_color_texture.map(|t| t.texture)
     );
 }

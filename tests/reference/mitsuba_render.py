@@ -215,15 +215,13 @@ def material_info(g, index, brdf=None):
         mat = g.j["materials"][index]
     name = mat.get("name", f"material {index}")
     pbr = mat.get("pbrMetallicRoughness", {})
-    if "metallicRoughnessTexture" in pbr:
-        raise GltfError(f"{name}: metallicRoughnessTexture is not supported")
+    # lumiere ignores the metallic-roughness, normal and occlusion textures
+    # (it warns), and so does this conversion: both render the same scene
     texture = pbr.get("baseColorTexture")
-    if texture is not None and "extensions" in texture:
-        raise GltfError(f"{name}: base colour texture extensions (KHR_texture_transform) "
-                        "are not supported")
-    for key in ("emissiveTexture", "normalTexture", "occlusionTexture"):
-        if key in mat:
-            raise GltfError(f"{name}: {key} is not supported")
+    emission_texture = mat.get("emissiveTexture")
+    for ref in (texture, emission_texture):
+        if ref is not None and "extensions" in ref:
+            raise GltfError(f"{name}: texture extensions (KHR_texture_transform) are not supported")
     base = [float(c) for c in pbr.get("baseColorFactor", [1, 1, 1, 1])[:3]]
     metallic = float(pbr.get("metallicFactor", 1.0))
     roughness = float(pbr.get("roughnessFactor", 1.0))
@@ -241,7 +239,10 @@ def material_info(g, index, brdf=None):
     emission = [float(c) * strength for c in mat.get("emissiveFactor", [0, 0, 0])]
     if max(emission) <= 0.0:
         emission = None
-    return kind, base, emission, bool(mat.get("doubleSided", False)), texture
+    if emission is None:
+        emission_texture = None  # no effect, as in lumiere
+    textures = {"base": texture, "emission": emission_texture}
+    return kind, base, emission, bool(mat.get("doubleSided", False)), textures
 
 
 _WRAP = {10497: "repeat", 33648: "mirror", 33071: "clamp"}
@@ -265,9 +266,9 @@ def image_bytes(g, index):
         return f.read()
 
 
-def base_color_texture(mi, g, texture, factor):
-    """A Mitsuba `bitmap` of glTF texture reference `texture` times the
-    base colour `factor`: decoded to linear RGB (sRGB colour texels), then
+def texture_bitmap(mi, g, texture, factor):
+    """A Mitsuba `bitmap` of glTF texture reference `texture` (a base colour
+    or an emissive texture) times its `factor`: decoded to linear RGB (sRGB colour texels), then
     filtered bilinearly in linear values, as lumiere does; glTF's uv
     (0, 0) is the image's top-left corner, as Mitsuba's is."""
     import tempfile
@@ -307,7 +308,8 @@ def build_mesh(mi, name, positions, normals, faces, bsdf, emission, texcoords=No
     props = mi.Properties()
     props["bsdf"] = mi.load_dict(bsdf)
     if emission is not None:
-        props["emitter"] = mi.load_dict({"type": "area", "radiance": {"type": "rgb", "value": emission}})
+        radiance = emission if isinstance(emission, dict) else {"type": "rgb", "value": emission}
+        props["emitter"] = mi.load_dict({"type": "area", "radiance": radiance})
         normals = None
     mesh = mi.Mesh(name, len(positions), len(faces), props=props, has_vertex_normals=normals is not None,
                    has_vertex_texcoords=texcoords is not None)
@@ -375,14 +377,21 @@ def convert(mi, g, width, height, spp, max_depth, verbose=True, brdf=None, spher
                 if "NORMAL" in prim["attributes"]:
                     nrm = g.accessor(prim["attributes"]["NORMAL"]).astype(np.float64) @ nmat.T
                     nrm /= np.linalg.norm(nrm, axis=1, keepdims=True)
-                kind, rgb, emission, double_sided, texture = material_info(g, prim.get("material"), brdf)
-                uv, color = None, None
-                if texture is not None:
-                    uv_set = f"TEXCOORD_{texture.get('texCoord', 0)}"
+                kind, rgb, emission, double_sided, textures = material_info(g, prim.get("material"), brdf)
+                used = {k: t for k, t in textures.items() if t is not None}
+                uv_sets = {f"TEXCOORD_{t.get('texCoord', 0)}" for t in used.values()}
+                if len(uv_sets) > 1:
+                    raise GltfError(f"{nname}: its textures read {sorted(uv_sets)}; "
+                                    "a Mitsuba mesh has one set of texture coordinates")
+                uv = None
+                for uv_set in uv_sets:
                     if uv_set not in prim["attributes"]:
                         raise GltfError(f"{nname}: its texture reads {uv_set}, which it lacks")
                     uv = g.accessor(prim["attributes"][uv_set]).astype(np.float64)
-                    color = base_color_texture(mi, g, texture, rgb)
+                color = texture_bitmap(mi, g, used["base"], rgb) if "base" in used else None
+                radiance = emission
+                if "emission" in used:
+                    radiance = texture_bitmap(mi, g, used["emission"], emission)
                 if emission is not None:
                     if double_sided:
                         raise GltfError(f"{nname}: double-sided emitters are not supported "
@@ -390,7 +399,7 @@ def convert(mi, g, width, height, spp, max_depth, verbose=True, brdf=None, spher
                     n_emitters += 1
                 key = f"mesh{ni}_{pi}"
                 scene[key] = build_mesh(mi, f"{nname}/{pi}", pos, nrm, faces, bsdf_dict(kind, rgb, color),
-                                        emission, uv)
+                                        radiance, uv)
                 if verbose:
                     print(f"  mesh {nname!r}: {len(faces)} triangles, {kind} {rgb}"
                           + (f", emits {emission}" if emission else ""), file=sys.stderr)
