@@ -207,7 +207,7 @@ def world_nodes(g):
 # --------------------------------------------------------------------------
 
 def material_info(g, index, brdf=None):
-    """Returns (kind, rgb, emission rgb or None, double_sided); `brdf`
+    """Returns (kind, rgb, emission rgb or None, double_sided, its textures); `brdf`
     ("lambert" or "mirror") replaces every material's model."""
     if index is None:
         mat = {}  # glTF default material: white, metallic 1, roughness 1
@@ -301,6 +301,29 @@ def bsdf_dict(kind, rgb, texture=None):
     return {"type": "twosided", "material": inner}
 
 
+def double_sided_copies(positions, faces, texcoords):
+    """A double-sided emitter as two one-sided ones: the triangles as
+    given, moved a hair's breadth along their front normal, and the same
+    triangles wound the other way, moved as far behind. A ray from either
+    side meets first the copy that faces it, whose emission is lumiere's
+    double-sided emission; a light sample of the copy behind is dark (it
+    faces away) and occluded. The hair is 10⁻⁵ of the mesh's extent and
+    distance from the origin, far above float rounding and far below any
+    feature of the image."""
+    corners = positions[faces]  # (n, 3 vertices, xyz)
+    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    length = np.linalg.norm(normal, axis=1, keepdims=True)
+    normal = np.divide(normal, length, out=np.zeros_like(normal), where=length > 0)
+    extent = np.ptp(positions, axis=0).max() + np.abs(positions).max()
+    hair = 1e-5 * extent * normal[:, None, :]
+    n = len(faces)
+    unshared = np.arange(3 * n).reshape(n, 3)
+    uv = None if texcoords is None else texcoords[faces].reshape(-1, 2)
+    front = ((corners + hair).reshape(-1, 3), unshared, uv)
+    back = ((corners - hair).reshape(-1, 3), unshared[:, [0, 2, 1]], uv)
+    return front, back
+
+
 def build_mesh(mi, name, positions, normals, faces, bsdf, emission, texcoords=None):
     """A Mitsuba mesh from world-space arrays. Emitting meshes get no vertex
     normals, so that Mitsuba's emitting side is the one given by the winding
@@ -392,14 +415,17 @@ def convert(mi, g, width, height, spp, max_depth, verbose=True, brdf=None, spher
                 radiance = emission
                 if "emission" in used:
                     radiance = texture_bitmap(mi, g, used["emission"], emission)
-                if emission is not None:
-                    if double_sided:
-                        raise GltfError(f"{nname}: double-sided emitters are not supported "
-                                        "(Mitsuba's area emitter is one-sided)")
-                    n_emitters += 1
+                bsdf = bsdf_dict(kind, rgb, color)
                 key = f"mesh{ni}_{pi}"
-                scene[key] = build_mesh(mi, f"{nname}/{pi}", pos, nrm, faces, bsdf_dict(kind, rgb, color),
-                                        radiance, uv)
+                if emission is not None and double_sided:
+                    # Mitsuba's area emitter is one-sided: two one-sided copies
+                    for side, (p, f, t) in zip("ab", double_sided_copies(pos, faces, uv)):
+                        scene[f"{key}{side}"] = build_mesh(mi, f"{nname}/{pi}{side}", p, None, f, bsdf,
+                                                           radiance, t)
+                    n_emitters += 2
+                else:
+                    n_emitters += emission is not None
+                    scene[key] = build_mesh(mi, f"{nname}/{pi}", pos, nrm, faces, bsdf, radiance, uv)
                 if verbose:
                     print(f"  mesh {nname!r}: {len(faces)} triangles, {kind} {rgb}"
                           + (f", emits {emission}" if emission else ""), file=sys.stderr)
