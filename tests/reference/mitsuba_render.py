@@ -115,6 +115,18 @@ class Gltf:
         self._binary_chunk = next((body for kind, body in chunks[1:] if kind == b"BIN\0"), None)
         return json.loads(chunks[0][1].decode("utf-8"))
 
+    def uri_bytes(self, uri, what=""):
+        """The bytes a buffer's or image's `uri` names: a base64 data URI, or
+        a file beside the glTF; `what` prefixes an error."""
+        if uri.startswith("data:"):
+            m = re.match(r"data:[^;,]*;base64,(.*)", uri, re.S)
+            if not m:
+                raise GltfError(f"{what}only base64 data URIs are supported")
+            return base64.b64decode(m.group(1))
+        from urllib.parse import unquote
+        with open(os.path.join(self.dir, unquote(uri)), "rb") as f:
+            return f.read()
+
     def buffer(self, i):
         if i not in self._buffers:
             b = self.j["buffers"][i]
@@ -124,15 +136,8 @@ class Gltf:
                 if i != 0 or self._binary_chunk is None:
                     raise GltfError(f"buffer {i} has no uri and there is no .glb binary chunk")
                 data = self._binary_chunk
-            elif uri.startswith("data:"):
-                m = re.match(r"data:[^;,]*;base64,(.*)", uri, re.S)
-                if not m:
-                    raise GltfError("only base64 data URIs are supported")
-                data = base64.b64decode(m.group(1))
             else:
-                from urllib.parse import unquote
-                with open(os.path.join(self.dir, unquote(uri)), "rb") as f:
-                    data = f.read()
+                data = self.uri_bytes(uri)
             if len(data) < b["byteLength"]:
                 raise GltfError(f"buffer {i} is shorter than its byteLength")
             self._buffers[i] = data
@@ -255,22 +260,14 @@ def image_bytes(g, index):
         view = g.j["bufferViews"][image["bufferView"]]
         start = view.get("byteOffset", 0)
         return g.buffer(view["buffer"])[start:start + view["byteLength"]]
-    uri = image.get("uri", "")
-    if uri.startswith("data:"):
-        m = re.match(r"data:[^;,]*;base64,(.*)", uri, re.S)
-        if not m:
-            raise GltfError(f"image {index}: only base64 data URIs are supported")
-        return base64.b64decode(m.group(1))
-    from urllib.parse import unquote
-    with open(os.path.join(g.dir, unquote(uri)), "rb") as f:
-        return f.read()
+    return g.uri_bytes(image.get("uri", ""), f"image {index}: ")
 
 
 def texture_bitmap(mi, g, texture, factor):
     """A Mitsuba `bitmap` of glTF texture reference `texture` (a base colour
-    or an emissive texture) times its `factor`: decoded to linear RGB (sRGB colour texels), then
-    filtered bilinearly in linear values, as lumiere does; glTF's uv
-    (0, 0) is the image's top-left corner, as Mitsuba's is."""
+    or an emissive texture) times its `factor`: decoded to linear RGB (sRGB
+    colour texels), then filtered bilinearly in linear values, as lumiere
+    does; glTF's uv (0, 0) is the image's top-left corner, as Mitsuba's is."""
     import tempfile
     tex = g.j["textures"][texture["index"]]
     if "source" not in tex:
