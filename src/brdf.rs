@@ -79,8 +79,16 @@ impl Brdf {
         match *self {
             Brdf::Lambert { albedo } => albedo * FRAC_1_PI,
             Brdf::Phong { kd, ks, exponent } => {
-                let cos_alpha = wi.dot(reflect(wo)).max(0.0);
-                kd * FRAC_1_PI + ks * ((exponent + 2.0) / (2.0 * PI) * cos_alpha.powf(exponent))
+                // the lobe is zero past 90° from the mirror direction, also
+                // for n = 0 (where powf would give 0⁰ = 1): f then vanishes
+                // exactly where the lobe's sampling density does
+                let cos_alpha = wi.dot(reflect(wo));
+                let lobe = if cos_alpha > 0.0 {
+                    cos_alpha.powf(exponent)
+                } else {
+                    0.0
+                };
+                kd * FRAC_1_PI + ks * ((exponent + 2.0) / (2.0 * PI) * lobe)
             }
             Brdf::Mirror { .. } => Vec3::ZERO,
         }
@@ -188,6 +196,38 @@ mod tests {
         let wi = Vec3::new(0.1, 0.2, 0.97).normalize();
         let ratio = brdf.eval(wo, wi) * wi.z / brdf.pdf(wo, wi);
         assert!(ratio.is_finite());
+    }
+
+    /// The glTF default material (metallic 1, roughness 1) is Phong with
+    /// n = 0: its lobe covers the half-space around the mirror direction,
+    /// and what BRDF sampling estimates must be ∫ f cos dω, here measured
+    /// independently of the routine by uniform directions on the hemisphere.
+    #[test]
+    fn phong_with_exponent_zero_is_sampled_where_it_reflects() {
+        let brdf = Brdf::Phong {
+            kd: Vec3::ZERO,
+            ks: Vec3::ONE,
+            exponent: 0.0,
+        };
+        let wo = Vec3::new(0.866, 0.0, 0.5); // 60° from the normal
+        let n = 200_000;
+        let sampled = albedo(&brdf, wo, n).x;
+        let mut sum = 0.0;
+        let mut sum_sq = 0.0;
+        for i in 0..n {
+            let s = SampleStream::new(2, 0, i as u64);
+            let wi = crate::sampling::uniform_hemisphere(s.uniform2(0));
+            let value = brdf.eval(wo, wi).x * wi.z / crate::sampling::UNIFORM_HEMISPHERE_PDF;
+            sum += value as f64;
+            sum_sq += (value * value) as f64;
+        }
+        let mean = sum / n as f64;
+        let standard_error = ((sum_sq / n as f64 - mean * mean) / n as f64).sqrt();
+        assert!(
+            (sampled as f64 - mean).abs() < 5.0 * standard_error + 1e-3,
+            "BRDF sampling {sampled}, quadrature {mean} ± {standard_error}"
+        );
+        assert!(mean < 1.0, "energy {mean}");
     }
 
     #[test]
