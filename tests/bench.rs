@@ -501,15 +501,26 @@ fn the_peer_renders_lumieres_overrides_or_is_left_out() {
     let arguments = scene_overrides(&scene, &settings).unwrap();
     assert_eq!(arguments, ["--sphere-lights", "0.125", "--brdf", "lambert"]);
 
+    // lumiere's Phong is a Mitsuba BSDF of the script's: its parameters go along
+    settings.brdf = BrdfOverride::Phong;
+    settings.phong_exponent = 12.5;
+    settings.phong_specular = 0.4;
+    let arguments = scene_overrides(&scene, &settings).unwrap();
+    assert_eq!(
+        arguments[2..],
+        [
+            "--brdf",
+            "phong",
+            "--phong-exponent",
+            "12.5",
+            "--phong-specular",
+            "0.4"
+        ]
+    );
+
     settings.light_mode = LightMode::Point;
     let reason = scene_overrides(&scene, &settings).expect_err("no cosine-lobe point lights");
     assert!(reason.starts_with("--lights point make"), "{reason}");
-    settings.brdf = BrdfOverride::Phong;
-    let reason = scene_overrides(&scene, &settings).expect_err("no Phong");
-    assert!(
-        reason.contains("--lights point and --brdf phong"),
-        "{reason}"
-    );
 }
 
 /// The reference spends the rays of its sample budget with Sobol numbers

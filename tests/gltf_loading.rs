@@ -1003,3 +1003,50 @@ fn the_textured_cornell_box_reads_its_checker_in_linear_values() {
         checker.base_color_texture.map(|t| t.texture)
     );
 }
+
+#[test]
+fn the_glossy_cornell_box_maps_its_materials_onto_phong() {
+    // the file the Mitsuba Phong check renders (tests/reference/README.md)
+    use lumiere::brdf::Brdf;
+    use lumiere::settings::RenderSettings;
+    use lumiere::shading::resolve_brdf;
+    let scene = load(Path::new("tests/data/cornell-glossy.gltf")).unwrap();
+    let settings = RenderSettings::default();
+    let brdf = |name: &str| {
+        let material = scene
+            .materials
+            .iter()
+            .find(|m| m.name == name)
+            .unwrap_or_else(|| panic!("no material {name}"));
+        resolve_brdf(material, material.base_color, &settings)
+    };
+    let Brdf::Phong { kd, ks, exponent } = brdf("glossy floor") else {
+        panic!("the floor is not Phong");
+    };
+    // metallic 0, roughness 0.5: α = 0.25, n = 2/α² − 2
+    assert!((exponent - 30.0).abs() < 1e-3, "{exponent}");
+    assert!((ks - Vec3::splat(0.04)).abs().max_element() < 1e-6, "{ks}");
+    assert!((kd.x - 0.885809).abs() < 1e-6, "{kd}");
+    let Brdf::Phong { kd, ks, exponent } = brdf("brass") else {
+        panic!("the tall block is not Phong");
+    };
+    assert!((exponent - 131.2778).abs() < 1e-2, "{exponent}");
+    assert_eq!(kd, Vec3::ZERO);
+    assert!((ks - Vec3::new(0.91, 0.78, 0.42)).abs().max_element() < 1e-6);
+    // the short block has no material: glTF's default, metallic 1 and roughness 1
+    let short_block = scene
+        .objects
+        .iter()
+        .find(|o| o.name == "short block")
+        .expect("the short block");
+    let material = &scene.materials[short_block.material as usize];
+    let default = resolve_brdf(material, material.base_color, &settings);
+    assert_eq!(
+        default,
+        Brdf::Phong {
+            kd: Vec3::ZERO,
+            ks: Vec3::ONE,
+            exponent: 0.0
+        }
+    );
+}

@@ -81,8 +81,9 @@ pub fn max_depth(settings: &RenderSettings) -> Option<u32> {
 
 /// The peer's arguments that make it render the scene lumiere renders for
 /// `settings` (its `--brdf` and `--lights area` overrides), or why it
-/// cannot: the peer reads the file, and has no Phong model nor point lights
-/// with a cosine lobe.
+/// cannot: the peer reads the file (its materials, lumiere's Phong among
+/// them, are the script's to map), and has no point lights with a cosine
+/// lobe.
 pub fn scene_overrides(scene: &Scene, settings: &RenderSettings) -> Result<Vec<String>, String> {
     let mut arguments = Vec::new();
     let mut missing = Vec::new();
@@ -99,7 +100,14 @@ pub fn scene_overrides(scene: &Scene, settings: &RenderSettings) -> Result<Vec<S
         BrdfOverride::Lambert | BrdfOverride::Mirror => {
             arguments.extend(["--brdf".to_string(), settings.brdf.label().to_string()])
         }
-        BrdfOverride::Phong => missing.push("--brdf phong"),
+        BrdfOverride::Phong => arguments.extend([
+            "--brdf".to_string(),
+            "phong".to_string(),
+            "--phong-exponent".to_string(),
+            settings.phong_exponent.to_string(),
+            "--phong-specular".to_string(),
+            settings.phong_specular.to_string(),
+        ]),
     }
     if missing.is_empty() {
         return Ok(arguments);
