@@ -465,12 +465,11 @@ fn with_adaptive_sampling_every_curve_is_measured_uniform_and_adaptive() {
     );
 }
 
-/// The peer renders the scene lumiere renders: `--brdf lambert|mirror` and
-/// `--lights area` (with the radius lumiere uses) pass to it, the overrides
-/// it has no equivalent for leave it out with their names; the estimator's
-/// settings change nothing.
+/// The peer renders the scene lumiere renders: `--brdf` (Phong with its
+/// exponent and ks) and `--lights area` (with the radius lumiere uses) or
+/// `--lights point` pass to it; the estimator's settings change nothing.
 #[test]
-fn the_peer_renders_lumieres_overrides_or_is_left_out() {
+fn the_peer_renders_lumieres_overrides() {
     use lumiere::bench::peer::scene_overrides;
     use lumiere::settings::{BrdfOverride, LightMode};
     let scene = builtin::cornell();
@@ -481,11 +480,11 @@ fn the_peer_renders_lumieres_overrides_or_is_left_out() {
         seed: 7,
         ..RenderSettings::default()
     };
-    assert_eq!(scene_overrides(&scene, &settings), Ok(vec![]));
+    assert!(scene_overrides(&scene, &settings).is_empty());
 
     settings.brdf = BrdfOverride::Mirror;
     settings.light_mode = LightMode::Area;
-    let arguments = scene_overrides(&scene, &settings).expect("Mitsuba has mirrors and spheres");
+    let arguments = scene_overrides(&scene, &settings);
     let radius = 0.02 * scene.bounds().diagonal();
     assert_eq!(
         arguments[..3],
@@ -498,14 +497,14 @@ fn the_peer_renders_lumieres_overrides_or_is_left_out() {
     assert_eq!(arguments[3], "mirror");
     settings.light_radius = Some(0.125);
     settings.brdf = BrdfOverride::Lambert;
-    let arguments = scene_overrides(&scene, &settings).unwrap();
+    let arguments = scene_overrides(&scene, &settings);
     assert_eq!(arguments, ["--sphere-lights", "0.125", "--brdf", "lambert"]);
 
     // lumiere's Phong is a Mitsuba BSDF of the script's: its parameters go along
     settings.brdf = BrdfOverride::Phong;
     settings.phong_exponent = 12.5;
     settings.phong_specular = 0.4;
-    let arguments = scene_overrides(&scene, &settings).unwrap();
+    let arguments = scene_overrides(&scene, &settings);
     assert_eq!(
         arguments[2..],
         [
@@ -518,9 +517,11 @@ fn the_peer_renders_lumieres_overrides_or_is_left_out() {
         ]
     );
 
+    // and lumiere's cosine points are a Mitsuba emitter of the script's
     settings.light_mode = LightMode::Point;
-    let reason = scene_overrides(&scene, &settings).expect_err("no cosine-lobe point lights");
-    assert!(reason.starts_with("--lights point make"), "{reason}");
+    settings.brdf = BrdfOverride::Authored;
+    let arguments = scene_overrides(&scene, &settings);
+    assert_eq!(arguments, ["--point-emitters"]);
 }
 
 /// The reference spends the rays of its sample budget with Sobol numbers

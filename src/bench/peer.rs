@@ -80,20 +80,17 @@ pub fn max_depth(settings: &RenderSettings) -> Option<u32> {
 }
 
 /// The peer's arguments that make it render the scene lumiere renders for
-/// `settings` (its `--brdf` and `--lights area` overrides), or why it
-/// cannot: the peer reads the file (its materials, lumiere's Phong among
-/// them, are the script's to map), and has no point lights with a cosine
-/// lobe.
-pub fn scene_overrides(scene: &Scene, settings: &RenderSettings) -> Result<Vec<String>, String> {
+/// `settings`: its `--brdf` and `--lights` overrides (the peer reads the
+/// file itself, and maps its materials, lumiere's Phong among them).
+pub fn scene_overrides(scene: &Scene, settings: &RenderSettings) -> Vec<String> {
     let mut arguments = Vec::new();
-    let mut missing = Vec::new();
     match settings.light_mode {
         LightMode::Authored => {}
         LightMode::Area => arguments.extend([
             "--sphere-lights".to_string(),
             sphere_light_radius(scene, settings).to_string(),
         ]),
-        LightMode::Point => missing.push("--lights point"),
+        LightMode::Point => arguments.push("--point-emitters".to_string()),
     }
     match settings.brdf {
         BrdfOverride::Authored => {}
@@ -109,14 +106,7 @@ pub fn scene_overrides(scene: &Scene, settings: &RenderSettings) -> Result<Vec<S
             settings.phong_specular.to_string(),
         ]),
     }
-    if missing.is_empty() {
-        return Ok(arguments);
-    }
-    Err(format!(
-        "{} make lumiere render a scene the peer cannot render, \
-         so the peer's error against lumiere's reference would not be its noise",
-        missing.join(" and ")
-    ))
+    arguments
 }
 
 /// The peer's `--camera` argument for a scene that has no camera of its
@@ -189,15 +179,7 @@ pub fn run(
             peer.label()
         )));
     };
-    let overrides = match scene_overrides(loaded, settings) {
-        Ok(arguments) => arguments,
-        Err(reason) => {
-            return Ok(PeerRun::Skipped(format!(
-                "{} not run: {reason}",
-                peer.label()
-            )));
-        }
-    };
+    let overrides = scene_overrides(loaded, settings);
     let camera = match camera_arguments(loaded) {
         Ok(arguments) => arguments,
         Err(reason) => {

@@ -12,9 +12,10 @@ with lumiere's own definitions (src/metrics.rs):
     python tests/reference/mitsuba_bench.py SCENE.gltf --reference REF.exr \
         --width W --height H --max-depth 3 --spp 1,2,4,8,... --out OUT.csv \
         [--variant llvm_ad_rgb] [--threads N] \
-        [--brdf lambert|mirror|phong] [--sphere-lights RADIUS]
+        [--brdf lambert|mirror|phong] [--sphere-lights RADIUS] [--point-emitters]
 
-(`--brdf` and `--sphere-lights` are lumiere's `--brdf` and `--lights area`,
+(`--brdf`, `--sphere-lights` and `--point-emitters` are lumiere's `--brdf`,
+`--lights area` and `--lights point`,
 as in mitsuba_render.py.) Unlike mitsuba_render.py's references, the timed
 renders use Russian roulette as lumiere does (`--rr-depth 3`): both end
 deep paths the same way, which only matters past L2.
@@ -132,6 +133,7 @@ def main(argv=None):
         print(f"error: Mitsuba runs {mi.variant()}, not {args.variant}", file=sys.stderr)
         return 2
     mr.register_phong(mi)
+    mr.register_cosine_point(mi)
     threads = dr.thread_count() if hasattr(dr, "thread_count") else os.cpu_count()
 
     reference = read_exr(args.reference)
@@ -143,7 +145,8 @@ def main(argv=None):
     g = mr.Gltf(args.scene)
     scene = mi.load_dict(mr.convert(mi, g, args.width, args.height, 1, args.max_depth, verbose=False,
                                           brdf=mr.brdf_override(args), sphere_radius=args.sphere_lights,
-                                          rr_depth=args.rr_depth, given_camera=args.camera))
+                                          rr_depth=args.rr_depth, given_camera=args.camera,
+                                          point_emitters=args.point_emitters))
 
     per_pass = args.spp_per_pass or (256 if llvm else max(args.spp))
     seed = [args.seed]
