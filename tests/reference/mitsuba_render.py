@@ -28,7 +28,8 @@ Supported glTF subset (anything else is rejected, not approximated):
   radiance of a one-sided `area` emitter on the front face (counter-
   clockwise winding); double-sided emitters are rejected;
 * KHR_lights_punctual point lights (`point`, intensity = color x
-  intensity, W/sr) and directional lights (`directional`, irradiance =
+  intensity, W/sr), spot lights (`lumiere_spot`, registered below, with
+  lumiere's falloff) and directional lights (`directional`, irradiance =
   color x intensity, along the node's -Z);
 * the first camera (in node order) with a perspective projection: yfov,
   looking down its -Z. Without a camera, the scene is rejected.
@@ -325,7 +326,7 @@ def register_phong(mi):
 
 
 def register_cosine_point(mi):
-    """Registers `cosine_point`: lumiere's `--lights point` light, an area
+    """Registers `cosine_point` and `lumiere_spot` (below). `cosine_point` is lumiere's `--lights point` light, an area
     light collapsed to its centroid, of intensity I(w) = radiance_area *
     max(0, n.w) (|n.w| if two-sided). A Dirac in position, like Mitsuba's
     `point`, which it follows; Mitsuba's own `point` and this class
@@ -381,6 +382,59 @@ def register_cosine_point(mi):
             return "CosinePoint"
 
     mi.register_emitter("cosine_point", lambda props: CosinePoint(props))
+
+    class Spot(mi.Emitter):
+        """lumiere's spot light (glTF's KHR_lights_punctual spot): intensity
+        I t^2, t = (cos - cos_outer) / max(cos_inner - cos_outer, 1e-3)
+        clamped to [0, 1], cos the angle to the axis. Mitsuba's `spot`
+        ramps linearly in angle, not in cos squared."""
+
+        def __init__(self, props):
+            mi.Emitter.__init__(self, props)
+            self.position = mi.Point3f(props["position"])
+            self.axis = mi.Vector3f(props["axis"])
+            self.intensity = mi.Color3f(props["intensity"])
+            self.cos_inner = float(props["cos_inner"])
+            self.cos_outer = float(props["cos_outer"])
+            self.m_flags = mi.EmitterFlags.DeltaPosition
+
+        def towards(self, it):
+            d = self.position - it.p
+            dist = dr.norm(d)
+            wi = d / dist
+            scale = 1.0 / max(self.cos_inner - self.cos_outer, 1e-3)
+            t = dr.clip((dr.dot(self.axis, -wi) - self.cos_outer) * scale, 0.0, 1.0)
+            return wi, dist, self.intensity * (t * t) / (dist * dist)
+
+        def sample_direction(self, it, sample, active):
+            wi, dist, value = self.towards(it)
+            ds = dr.zeros(mi.DirectionSample3f)
+            ds.p = self.position
+            ds.n = self.axis
+            ds.d = wi
+            ds.dist = dist
+            ds.pdf = 1.0
+            ds.delta = True
+            ds.time = it.time
+            ds.emitter = mi.EmitterPtr(self)
+            return ds, dr.select(active, value, 0.0)
+
+        def pdf_direction(self, it, ds, active):
+            return mi.Float(0.0)
+
+        def eval_direction(self, it, ds, active):
+            return dr.select(active, self.towards(it)[2], 0.0)
+
+        def eval(self, si, active):
+            return mi.Color3f(0.0)
+
+        def traverse(self, callback):
+            pass
+
+        def to_string(self):
+            return "LumiereSpot"
+
+    mi.register_emitter("lumiere_spot", lambda props: Spot(props))
 
 
 def cosine_points(positions, faces, radiance, two_sided):
@@ -656,11 +710,22 @@ def convert(mi, g, width, height, spp, max_depth, verbose=True, brdf=None, spher
             kind = light["type"]
             if kind == "point":
                 scene[f"light{ni}"] = point_light([float(x) for x in world[:3, 3]], value, sphere_radius)
+            elif kind == "spot" and sphere_radius is None:
+                spot = light.get("spot", {})
+                axis = world[:3, :3] @ np.array([0.0, 0.0, -1.0])
+                scene[f"light{ni}"] = {
+                    "type": "lumiere_spot", "position": [float(x) for x in world[:3, 3]],
+                    "axis": [float(x) for x in axis / np.linalg.norm(axis)], "intensity": value,
+                    "cos_inner": math.cos(float(spot.get("innerConeAngle", 0.0))),
+                    "cos_outer": math.cos(float(spot.get("outerConeAngle", math.pi / 4)))}
             elif kind == "directional":
                 d = world[:3, :3] @ np.array([0.0, 0.0, -1.0])
                 scene[f"light{ni}"] = {"type": "directional",
                                        "direction": [float(x) for x in d / np.linalg.norm(d)],
                                        "irradiance": {"type": "rgb", "value": value}}
+            elif kind == "spot":
+                raise GltfError(f"{nname}: a spot light made a sphere (--sphere-lights) keeps its cone "
+                                "in lumiere; Mitsuba's sphere emitters have none")
             else:
                 raise GltfError(f"{nname}: {kind} lights are not supported")
             n_emitters += 1
