@@ -325,10 +325,11 @@ def register_phong(mi):
     mi.register_bsdf("lumiere_phong", lambda props: LumierePhong(props))
 
 
-def register_cosine_point(mi):
-    """Registers `cosine_point` and `lumiere_spot` (below). `cosine_point` is lumiere's `--lights point` light, an area
-    light collapsed to its centroid, of intensity I(w) = radiance_area *
-    max(0, n.w) (|n.w| if two-sided). A Dirac in position, like Mitsuba's
+def register_emitters(mi):
+    """Registers `cosine_point` and `lumiere_spot` (below). `cosine_point`
+    is lumiere's `--lights point` light, an area light collapsed to its
+    centroid, of intensity I(w) = radiance_area * max(0, n.w) (|n.w| if
+    two-sided). A Dirac in position, like Mitsuba's
     `point`, which it follows; Mitsuba's own `point` and this class
     rendered a light at the same place in the same time (2.5-2.8 s for
     128 spp at 256x256, both, on a busy machine)."""
@@ -887,7 +888,7 @@ def main(argv=None):
     import mitsuba as mi
     mi.set_variant(args.variant)
     register_phong(mi)
-    register_cosine_point(mi)
+    register_emitters(mi)
 
     g = Gltf(args.scene)
     t0 = time.perf_counter()
