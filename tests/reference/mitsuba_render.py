@@ -326,35 +326,37 @@ def register_phong(mi):
 
 
 def register_emitters(mi):
-    """Registers `cosine_point` and `lumiere_spot` (below). `cosine_point`
-    is lumiere's `--lights point` light, an area light collapsed to its
-    centroid, of intensity I(w) = radiance_area * max(0, n.w) (|n.w| if
-    two-sided). A Dirac in position, like Mitsuba's
-    `point`, which it follows; Mitsuba's own `point` and this class
-    rendered a light at the same place in the same time (2.5-2.8 s for
-    128 spp at 256x256, both, on a busy machine)."""
+    """Registers `cosine_point` and `lumiere_spot`, lumiere's point-like
+    lights that Mitsuba lacks: Diracs in position, like Mitsuba's `point`,
+    which they follow, of radiance I(w) / d^2 towards a point at distance d
+    along -w. `cosine_point` is lumiere's `--lights point` light, an area
+    light collapsed to its centroid: I(w) = radiance_area * max(0, n.w)
+    (|n.w| if two-sided). Mitsuba's own `point` and it rendered a light at
+    the same place in the same time (2.5-2.8 s for 128 spp at 256x256,
+    both, on a busy machine). `lumiere_spot` is glTF's spot light with
+    lumiere's falloff: I t^2, t = (cos - cos_outer) / max(cos_inner -
+    cos_outer, 1e-3) clamped to [0, 1], cos the angle to the axis
+    (Mitsuba's `spot` ramps linearly in angle, not in cos squared)."""
     import drjit as dr
 
-    class CosinePoint(mi.Emitter):
+    class PointLike(mi.Emitter):
+        """A Dirac in position at `self.position`, facing `self.normal`,
+        whose intensity along a unit direction is `self.intensity(w)`."""
+
         def __init__(self, props):
             mi.Emitter.__init__(self, props)
             self.position = mi.Point3f(props["position"])
-            self.normal = mi.Vector3f(props["normal"])
-            self.radiance_area = mi.Color3f(props["radiance_area"])
-            self.two_sided = bool(props["two_sided"]) if "two_sided" in props else False
             self.m_flags = mi.EmitterFlags.DeltaPosition
 
         def towards(self, it):
-            """The unit direction from `it` to the light, its distance, and the intensity's cosine."""
+            """The unit direction from `it` to the light, its distance and the radiance it brings."""
             d = self.position - it.p
             dist = dr.norm(d)
             wi = d / dist
-            cos = dr.dot(self.normal, -wi)
-            cos = dr.abs(cos) if self.two_sided else dr.maximum(cos, 0.0)
-            return wi, dist, cos
+            return wi, dist, self.intensity(-wi) / (dist * dist)
 
         def sample_direction(self, it, sample, active):
-            wi, dist, cos = self.towards(it)
+            wi, dist, radiance = self.towards(it)
             ds = dr.zeros(mi.DirectionSample3f)
             ds.p = self.position
             ds.n = self.normal
@@ -364,61 +366,7 @@ def register_emitters(mi):
             ds.delta = True
             ds.time = it.time
             ds.emitter = mi.EmitterPtr(self)
-            return ds, dr.select(active, self.radiance_area * cos / (dist * dist), 0.0)
-
-        def pdf_direction(self, it, ds, active):
-            return mi.Float(0.0)
-
-        def eval_direction(self, it, ds, active):
-            _, dist, cos = self.towards(it)
-            return dr.select(active, self.radiance_area * cos / (dist * dist), 0.0)
-
-        def eval(self, si, active):
-            return mi.Color3f(0.0)
-
-        def traverse(self, callback):
-            pass
-
-        def to_string(self):
-            return "CosinePoint"
-
-    mi.register_emitter("cosine_point", lambda props: CosinePoint(props))
-
-    class Spot(mi.Emitter):
-        """lumiere's spot light (glTF's KHR_lights_punctual spot): intensity
-        I t^2, t = (cos - cos_outer) / max(cos_inner - cos_outer, 1e-3)
-        clamped to [0, 1], cos the angle to the axis. Mitsuba's `spot`
-        ramps linearly in angle, not in cos squared."""
-
-        def __init__(self, props):
-            mi.Emitter.__init__(self, props)
-            self.position = mi.Point3f(props["position"])
-            self.axis = mi.Vector3f(props["axis"])
-            self.intensity = mi.Color3f(props["intensity"])
-            self.cos_inner = float(props["cos_inner"])
-            self.cos_outer = float(props["cos_outer"])
-            self.m_flags = mi.EmitterFlags.DeltaPosition
-
-        def towards(self, it):
-            d = self.position - it.p
-            dist = dr.norm(d)
-            wi = d / dist
-            scale = 1.0 / max(self.cos_inner - self.cos_outer, 1e-3)
-            t = dr.clip((dr.dot(self.axis, -wi) - self.cos_outer) * scale, 0.0, 1.0)
-            return wi, dist, self.intensity * (t * t) / (dist * dist)
-
-        def sample_direction(self, it, sample, active):
-            wi, dist, value = self.towards(it)
-            ds = dr.zeros(mi.DirectionSample3f)
-            ds.p = self.position
-            ds.n = self.axis
-            ds.d = wi
-            ds.dist = dist
-            ds.pdf = 1.0
-            ds.delta = True
-            ds.time = it.time
-            ds.emitter = mi.EmitterPtr(self)
-            return ds, dr.select(active, value, 0.0)
+            return ds, dr.select(active, radiance, 0.0)
 
         def pdf_direction(self, it, ds, active):
             return mi.Float(0.0)
@@ -432,9 +380,36 @@ def register_emitters(mi):
         def traverse(self, callback):
             pass
 
+    class CosinePoint(PointLike):
+        def __init__(self, props):
+            PointLike.__init__(self, props)
+            self.normal = mi.Vector3f(props["normal"])
+            self.radiance_area = mi.Color3f(props["radiance_area"])
+            self.two_sided = bool(props["two_sided"]) if "two_sided" in props else False
+
+        def intensity(self, direction):
+            cos = dr.dot(self.normal, direction)
+            return self.radiance_area * (dr.abs(cos) if self.two_sided else dr.maximum(cos, 0.0))
+
+        def to_string(self):
+            return "CosinePoint"
+
+    class Spot(PointLike):
+        def __init__(self, props):
+            PointLike.__init__(self, props)
+            self.normal = mi.Vector3f(props["axis"])
+            self.peak = mi.Color3f(props["intensity"])
+            self.cos_outer = float(props["cos_outer"])
+            self.ramp = 1.0 / max(float(props["cos_inner"]) - self.cos_outer, 1e-3)
+
+        def intensity(self, direction):
+            t = dr.clip((dr.dot(self.normal, direction) - self.cos_outer) * self.ramp, 0.0, 1.0)
+            return self.peak * (t * t)
+
         def to_string(self):
             return "LumiereSpot"
 
+    mi.register_emitter("cosine_point", lambda props: CosinePoint(props))
     mi.register_emitter("lumiere_spot", lambda props: Spot(props))
 
 
