@@ -1050,3 +1050,43 @@ fn the_glossy_cornell_box_maps_its_materials_onto_phong() {
         }
     );
 }
+
+#[test]
+fn a_primitive_reads_each_texture_at_its_own_uv_set() {
+    // the file the Mitsuba check of two uv sets renders (tests/reference/README.md):
+    // the back wall glows with the checker at TEXCOORD_0 and reflects it at TEXCOORD_1
+    use lumiere::brdf::Brdf;
+    use lumiere::settings::RenderSettings;
+    use lumiere::shading::SurfacePoint;
+    let scene = load(Path::new("tests/data/cornell-two-uv-sets.gltf")).unwrap();
+    let wall = scene
+        .objects
+        .iter()
+        .find(|o| o.name == "back wall")
+        .expect("the back wall");
+    let material = &scene.materials[wall.material as usize];
+    let base = material.base_color_texture.expect("a base colour texture");
+    let emission = material.emission_texture.expect("an emissive texture");
+    assert_eq!((base.uv_set, emission.uv_set), (1, 0));
+    let texture = &scene.textures[base.texture as usize];
+    let mut differing = 0;
+    for triangle in wall.triangles.clone() {
+        for b in [Vec3::splat(1.0 / 3.0), Vec3::new(0.7, 0.2, 0.1)] {
+            let point = SurfacePoint::new(&scene, triangle, b);
+            let (uv0, uv1) = (point.uv(&scene, 0), point.uv(&scene, 1));
+            // set 1 is set 0 with u and v swapped and doubled
+            assert!((uv1 - 2.0 * Vec2::new(uv0.y, uv0.x)).length() < 1e-5);
+            let Brdf::Lambert { albedo } = point.brdf(&scene, &RenderSettings::default()) else {
+                panic!("the wall is Lambert");
+            };
+            let reflected = material.base_color * texture.sample(uv1);
+            assert!((albedo - reflected).abs().max_element() < 1e-6, "{albedo}");
+            let emitted = point.emitted(&scene, point.ng);
+            let glowing = material.emission * texture.sample(uv0);
+            assert!((emitted - glowing).abs().max_element() < 1e-6, "{emitted}");
+            differing += usize::from((texture.sample(uv0) - texture.sample(uv1)).length() > 0.1);
+        }
+    }
+    // the sets read different texels, so reading the wrong one would show
+    assert!(differing >= 2, "{differing}");
+}

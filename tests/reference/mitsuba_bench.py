@@ -133,6 +133,7 @@ def main(argv=None):
         print(f"error: Mitsuba runs {mi.variant()}, not {args.variant}", file=sys.stderr)
         return 2
     mr.register_phong(mi)
+    mr.register_textures(mi)
     mr.register_emitters(mi)
     threads = dr.thread_count() if hasattr(dr, "thread_count") else os.cpu_count()
 

@@ -15,24 +15,29 @@ directly (L0), 2 = L0 + direct lighting (L1), 3 = L0 + L1 + one indirect
 bounce (L2).
 
 Supported glTF subset (anything else is rejected, not approximated):
-* `.gltf` JSON with buffers as base64 data URIs or files beside it;
+* `.gltf` JSON with buffers as base64 data URIs or files beside it, and
+  `.glb`;
 * the default scene's node tree, with TRS or `matrix` transforms;
 * indexed or non-indexed triangle meshes (mode 4), POSITION and
   optional NORMAL;
-* metallic-roughness materials without textures: metallic 0 and
-  roughness 1 -> Lambert (`twosided` `diffuse`, reflectance =
-  baseColor); metallic 1 and roughness 0 -> perfect mirror (`twosided`
-  `conductor`, `material: none`, specular_reflectance = baseColor);
-  anything else -> lumiere's Phong (`lumiere_phong`, registered below);
+* metallic-roughness materials: metallic 0 and roughness 1 -> Lambert
+  (`twosided` `diffuse`, reflectance = baseColor); metallic 1 and
+  roughness 0 -> perfect mirror (`twosided` `conductor`, `material:
+  none`, specular_reflectance = baseColor); anything else -> lumiere's
+  Phong (`lumiere_phong`, registered below);
+* base colour and emissive textures (PNG or JPEG) at TEXCOORD_0 or
+  TEXCOORD_1, one set each (`lumiere_texture`, registered below, reads
+  them as lumiere does); KHR_texture_transform is ignored, as lumiere
+  ignores it;
 * emission: emissiveFactor x KHR_materials_emissive_strength is the
   radiance of a one-sided `area` emitter on the front face (counter-
-  clockwise winding); double-sided emitters are rejected;
+  clockwise winding); a double-sided one becomes two one-sided copies;
 * KHR_lights_punctual point lights (`point`, intensity = color x
   intensity, W/sr), spot lights (`lumiere_spot`, registered below, with
   lumiere's falloff) and directional lights (`directional`, irradiance =
   color x intensity, along the node's -Z);
-* the first camera (in node order) with a perspective projection: yfov,
-  looking down its -Z. Without a camera, the scene is rejected.
+* the first camera (in node order), perspective or orthographic, looking
+  down its -Z; without one, the camera lumiere framed (`--camera`).
 
 lumiere's scene overrides are mirrored, so that both render the
 same scene: `--brdf lambert|mirror|phong` (lumiere's `--brdf`: every
@@ -87,11 +92,10 @@ class Gltf:
             self.j = self._read_glb(data)
         else:
             self.j = json.loads(data.decode("utf-8"))
+        # lumiere's list: it ignores KHR_texture_transform (with a warning), and so does this
         for ext in self.j.get("extensionsRequired", []):
-            if ext not in ("KHR_lights_punctual", "KHR_materials_emissive_strength"):
-                raise GltfError(f"required extension {ext} is not supported")
-        for ext in self.j.get("extensionsRequired", []):
-            if ext not in ("KHR_lights_punctual", "KHR_materials_emissive_strength"):
+            if ext not in ("KHR_lights_punctual", "KHR_materials_emissive_strength",
+                           "KHR_texture_transform"):
                 raise GltfError(f"required extension {ext} is not supported")
 
     def _read_glb(self, data):
@@ -325,6 +329,57 @@ def register_phong(mi):
     mi.register_bsdf("lumiere_phong", lambda props: LumierePhong(props))
 
 
+def register_textures(mi):
+    """Registers `lumiere_texture`: its `nested` texture read as lumiere
+    reads it.
+
+    * `attribute` (optional): the texture coordinates of that mesh
+      attribute (u, v, 0 per vertex) instead of the mesh's own. lumiere
+      reads a texture at TEXCOORD_0 or TEXCOORD_1, as its glTF reference
+      says, and one primitive may use both; a Mitsuba mesh has one set.
+    * `area_sampled` (an emissive texture): reported as uniform, so that
+      Mitsuba's area emitter picks its light samples uniformly on the
+      surface, as lumiere does, and reads the texture there. Otherwise it
+      samples the texture's image and maps the uv it drew back onto the
+      surface, which misses every part of the surface whose uv lies outside
+      [0, 1]² (a repeated texture) and doubles where two parts share a uv."""
+
+    class LumiereTexture(mi.Texture):
+        def __init__(self, props):
+            mi.Texture.__init__(self, props)
+            self.nested = props["nested"]
+            self.attribute = props["attribute"] if "attribute" in props else None
+            self.area_sampled = props["area_sampled"] if "area_sampled" in props else False
+
+        def _at(self, si, active):
+            if self.attribute is None:
+                return si
+            moved = mi.SurfaceInteraction3f(si)
+            uv = si.shape.eval_attribute_3(self.attribute, si, active)
+            moved.uv = mi.Point2f(uv.x, uv.y)
+            return moved
+
+        def eval(self, si, active=True):
+            return self.nested.eval(self._at(si, active), active)
+
+        def eval_1(self, si, active=True):
+            return self.nested.eval_1(self._at(si, active), active)
+
+        def mean(self):
+            return self.nested.mean()
+
+        def is_spatially_varying(self):
+            return not self.area_sampled
+
+        def traverse(self, callback):
+            pass
+
+        def to_string(self):
+            return f"LumiereTexture[attribute={self.attribute}, area_sampled={self.area_sampled}]"
+
+    mi.register_texture("lumiere_texture", lambda props: LumiereTexture(props))
+
+
 def register_emitters(mi):
     """Registers `cosine_point` and `lumiere_spot`, lumiere's point-like
     lights that Mitsuba lacks: Diracs in position, like Mitsuba's `point`,
@@ -452,15 +507,13 @@ def material_info(g, index, brdf=None):
         mat = {}  # glTF default material: white, metallic 1, roughness 1
     else:
         mat = g.j["materials"][index]
-    name = mat.get("name", f"material {index}")
     pbr = mat.get("pbrMetallicRoughness", {})
     # lumiere ignores the metallic-roughness, normal and occlusion textures
     # (it warns), and so does this conversion: both render the same scene
+    # lumiere ignores KHR_texture_transform, its offsets, rotations, scales
+    # and uv set alike (it warns): so does this
     texture = pbr.get("baseColorTexture")
     emission_texture = mat.get("emissiveTexture")
-    for ref in (texture, emission_texture):
-        if ref is not None and "extensions" in ref:
-            raise GltfError(f"{name}: texture extensions (KHR_texture_transform) are not supported")
     base = [float(c) for c in pbr.get("baseColorFactor", [1, 1, 1, 1])[:3]]
     metallic = float(pbr.get("metallicFactor", 1.0))
     roughness = float(pbr.get("roughnessFactor", 1.0))
@@ -486,6 +539,18 @@ def material_info(g, index, brdf=None):
         emission_texture = None  # no effect, as in lumiere
     textures = {"base": texture, "emission": emission_texture}
     return kind, base, emission, bool(mat.get("doubleSided", False)), textures
+
+
+def texture_uv_set(texture):
+    """The texture coordinates (0 or 1) glTF texture reference `texture`
+    reads, as lumiere reads them: its texCoord; a set above 1 falls back to
+    set 0, with lumiere's warning."""
+    uv_set = int(texture.get("texCoord", 0))
+    if uv_set > 1:
+        print(f"warning: a texture reads TEXCOORD_{uv_set}; only sets 0 and 1 are loaded, set 0 used",
+              file=sys.stderr)
+        return 0
+    return uv_set
 
 
 _WRAP = {10497: "repeat", 33648: "mirror", 33071: "clamp"}
@@ -538,7 +603,7 @@ def bsdf_dict(kind, rgb, texture=None):
     return {"type": "twosided", "material": inner}
 
 
-def double_sided_copies(positions, faces, texcoords):
+def double_sided_copies(positions, faces, texcoords, attributes=None):
     """A double-sided emitter as two one-sided ones: the triangles as
     given, moved a hair's breadth along their front normal, and the same
     triangles wound the other way, moved as far behind. A ray from either
@@ -556,15 +621,18 @@ def double_sided_copies(positions, faces, texcoords):
     n = len(faces)
     unshared = np.arange(3 * n).reshape(n, 3)
     uv = None if texcoords is None else texcoords[faces].reshape(-1, 2)
-    front = ((corners + hair).reshape(-1, 3), unshared, uv)
-    back = ((corners - hair).reshape(-1, 3), unshared[:, [0, 2, 1]], uv)
+    extra = {k: a[faces].reshape(-1, a.shape[1]) for k, a in (attributes or {}).items()}
+    front = ((corners + hair).reshape(-1, 3), unshared, uv, extra)
+    back = ((corners - hair).reshape(-1, 3), unshared[:, [0, 2, 1]], uv, extra)
     return front, back
 
 
-def build_mesh(mi, name, positions, normals, faces, bsdf, emission, texcoords=None):
+def build_mesh(mi, name, positions, normals, faces, bsdf, emission, texcoords=None, attributes=None):
     """A Mitsuba mesh from world-space arrays. Emitting meshes get no vertex
     normals, so that Mitsuba's emitting side is the one given by the winding
-    (its face normal is cross(p1 - p0, p2 - p0), glTF's front face)."""
+    (its face normal is cross(p1 - p0, p2 - p0), glTF's front face).
+    `attributes`: per-vertex texture coordinates of other sets, by
+    attribute name, stored as (u, v, 0) for `uv_set`."""
     props = mi.Properties()
     props["bsdf"] = mi.load_dict(bsdf)
     if emission is not None:
@@ -585,6 +653,10 @@ def build_mesh(mi, name, positions, normals, faces, bsdf, emission, texcoords=No
     if texcoords is not None:
         put("vertex_texcoords", texcoords, np.float32)
     params.update()
+    for key, uv in (attributes or {}).items():
+        padded = np.zeros((len(uv), 3), dtype=np.float32)
+        padded[:, :2] = uv
+        mesh.add_attribute(key, 3, type(params["vertex_positions"])(padded.ravel()))
     return mesh
 
 
@@ -641,26 +713,37 @@ def convert(mi, g, width, height, spp, max_depth, verbose=True, brdf=None, spher
                     nrm /= np.linalg.norm(nrm, axis=1, keepdims=True)
                 kind, rgb, emission, double_sided, textures = material_info(g, prim.get("material"), brdf)
                 used = {k: t for k, t in textures.items() if t is not None}
-                uv_sets = {f"TEXCOORD_{t.get('texCoord', 0)}" for t in used.values()}
-                if len(uv_sets) > 1:
-                    raise GltfError(f"{nname}: its textures read {sorted(uv_sets)}; "
-                                    "a Mitsuba mesh has one set of texture coordinates")
-                uv = None
-                for uv_set in uv_sets:
-                    if uv_set not in prim["attributes"]:
-                        raise GltfError(f"{nname}: its texture reads {uv_set}, which it lacks")
-                    uv = g.accessor(prim["attributes"][uv_set]).astype(np.float64)
+                uv_sets = {k: texture_uv_set(t) for k, t in used.items()}
+                for uv_set in set(uv_sets.values()):
+                    if f"TEXCOORD_{uv_set}" not in prim["attributes"]:
+                        raise GltfError(f"{nname}: its texture reads TEXCOORD_{uv_set}, which it lacks")
+                # the mesh's own coordinates are the emission's: a light
+                # sample's point knows its uv but not its triangle, which a
+                # mesh attribute needs; a base colour read at another set
+                # reads one (`lumiere_texture`)
+                mesh_set = uv_sets.get("emission", uv_sets.get("base"))
+                uv, extra = None, {}
+                for uv_set in set(uv_sets.values()):
+                    coords = g.accessor(prim["attributes"][f"TEXCOORD_{uv_set}"]).astype(np.float64)
+                    if uv_set == mesh_set:
+                        uv = coords
+                    else:
+                        extra[f"vertex_uv{uv_set}"] = coords
                 color = texture_bitmap(mi, g, used["base"], rgb) if "base" in used else None
+                if "base" in used and uv_sets["base"] != mesh_set:
+                    color = {"type": "lumiere_texture", "nested": color,
+                             "attribute": f"vertex_uv{uv_sets['base']}"}
                 radiance = emission
                 if "emission" in used:
-                    radiance = texture_bitmap(mi, g, used["emission"], emission)
+                    radiance = {"type": "lumiere_texture", "area_sampled": True,
+                                "nested": texture_bitmap(mi, g, used["emission"], emission)}
                 bsdf = bsdf_dict(kind, rgb, color)
                 key = f"mesh{ni}_{pi}"
                 if emission is not None and point_emitters:
                     # lumiere scales the radiance by the emissive texture's mean texel
                     mean = [1.0, 1.0, 1.0]
                     if "emission" in used:
-                        texels = np.array(radiance["bitmap"], dtype=np.float64).reshape(-1, 3)
+                        texels = np.array(radiance["nested"]["bitmap"], dtype=np.float64).reshape(-1, 3)
                         mean = (texels.mean(axis=0) / np.maximum(emission, 1e-30)).tolist()
                     scaled = [e * m for e, m in zip(emission, mean)]
                     for k, light in enumerate(cosine_points(pos, faces, scaled, double_sided)):
@@ -669,13 +752,13 @@ def convert(mi, g, width, height, spp, max_depth, verbose=True, brdf=None, spher
                     continue
                 if emission is not None and double_sided:
                     # Mitsuba's area emitter is one-sided: two one-sided copies
-                    for side, (p, f, t) in zip("ab", double_sided_copies(pos, faces, uv)):
+                    for side, (p, f, t, a) in zip("ab", double_sided_copies(pos, faces, uv, extra)):
                         scene[f"{key}{side}"] = build_mesh(mi, f"{nname}/{pi}{side}", p, None, f, bsdf,
-                                                           radiance, t)
+                                                           radiance, t, a)
                     n_emitters += 2
                 else:
                     n_emitters += emission is not None
-                    scene[key] = build_mesh(mi, f"{nname}/{pi}", pos, nrm, faces, bsdf, radiance, uv)
+                    scene[key] = build_mesh(mi, f"{nname}/{pi}", pos, nrm, faces, bsdf, radiance, uv, extra)
                 if verbose:
                     print(f"  mesh {nname!r}: {len(faces)} triangles, {kind} {rgb}"
                           + (f", emits {emission}" if emission else ""), file=sys.stderr)
@@ -863,6 +946,7 @@ def main(argv=None):
     import mitsuba as mi
     mi.set_variant(args.variant)
     register_phong(mi)
+    register_textures(mi)
     register_emitters(mi)
 
     g = Gltf(args.scene)
