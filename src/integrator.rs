@@ -46,7 +46,8 @@
 //! The next direction is drawn uniformly on the hemisphere (pdf 1/2π), by
 //! cosine (cos θ/π) or by the BRDF's own routine (a mirror always uses its
 //! own); β *= f cos θ / pdf. At the first hit the path splits into M =
-//! `indirect_samples` continuations, each the rest of a full path driven by
+//! `indirect_samples` continuations (with `--indirect-samples auto`, the
+//! pilot's count for the pixel's region: `splitting`), each the rest of a full path driven by
 //! `stream.split(m, M)` with β / M. Russian roulette starts after the third
 //! reflection (it only touches L3+), with survival min(M β, 0.95): the
 //! sample's throughput, so that splitting does not shorten the
@@ -84,6 +85,7 @@ use crate::settings::{
     IndirectSampling, LightSampling, MisHeuristic, RenderSettings, Term, TermSet,
 };
 use crate::shading::SurfacePoint;
+use crate::splitting::Continuations;
 
 /// Radiance of one sample, per term.
 pub type TermRadiance = [Vec3; Term::COUNT];
@@ -271,8 +273,9 @@ pub struct RenderContext {
     pub settings: RenderSettings,
     pub camera: CameraRays,
     /// Continuations per first hit the samples take: `settings.indirect_samples`,
-    /// or the pilot's choice with `settings.auto_indirect_samples` (`splitting`).
-    pub indirect_samples: u32,
+    /// or the pilot's choice, region by region, with
+    /// `settings.auto_indirect_samples` (`splitting`).
+    pub continuations: Continuations,
     /// How far the path log draws a ray that left the scene: one scene
     /// diagonal (at least 1 m), found once, not per ray (it reads every vertex).
     pub escape_length: f32,
@@ -305,11 +308,11 @@ impl RenderContext {
             scene,
             accel,
             lights,
-            indirect_samples: settings.indirect_samples.max(1),
+            continuations: Continuations::uniform(settings.indirect_samples),
             settings,
             camera,
         };
-        context.update_indirect_samples();
+        context.update_continuations();
         context
     }
 
@@ -317,11 +320,11 @@ impl RenderContext {
     /// settings: their count, or with `auto_indirect_samples` the pilot's
     /// choice through the current camera. Called once the settings and the
     /// camera of a film are final.
-    pub fn update_indirect_samples(&mut self) {
-        self.indirect_samples = if self.settings.auto_indirect_samples {
-            crate::splitting::choose_indirect_samples(self).count
+    pub fn update_continuations(&mut self) {
+        self.continuations = if self.settings.auto_indirect_samples {
+            crate::splitting::choose_indirect_samples(self).continuations()
         } else {
-            self.settings.indirect_samples.max(1)
+            Continuations::uniform(self.settings.indirect_samples)
         };
     }
 
@@ -373,7 +376,7 @@ impl RenderContext {
         let ray = self.camera.generate(x, y, stream.uniform2(dim::PIXEL));
         let mut walk = Walk::new(self, counts, None);
         walk.restrict_terms(terms);
-        let radiance = walk.camera_path(ray, stream);
+        let radiance = walk.camera_path(ray, stream, self.continuations.at(x, y));
         guard_sample(radiance, counts)
     }
 
@@ -387,13 +390,15 @@ impl RenderContext {
         log: &mut PathLog,
     ) -> TermRadiance {
         let ray = self.camera.generate(x, y, stream.uniform2(dim::PIXEL));
-        let radiance = Walk::new(self, counts, Some(log)).camera_path(ray, stream);
+        let splits = self.continuations.at(x, y);
+        let radiance = Walk::new(self, counts, Some(log)).camera_path(ray, stream, splits);
         guard_sample(radiance, counts)
     }
 
-    /// Radiance arriving along `ray` (unit direction), per term.
+    /// Radiance arriving along `ray` (unit direction), per term, with the
+    /// continuations of the whole image.
     pub fn trace(&self, ray: Ray, stream: &SampleStream, counts: &mut RayCounts) -> TermRadiance {
-        Walk::new(self, counts, None).camera_path(ray, stream)
+        Walk::new(self, counts, None).camera_path(ray, stream, self.continuations.count)
     }
 }
 
@@ -510,9 +515,8 @@ impl<'a> Walk<'a> {
     }
 
     /// The whole sample: the camera segment, then the first vertex and its
-    /// `indirect_samples` continuations.
-    fn camera_path(self, ray: Ray, stream: &SampleStream) -> TermRadiance {
-        let splits = self.context.indirect_samples;
+    /// `splits` continuations.
+    fn camera_path(self, ray: Ray, stream: &SampleStream, splits: u32) -> TermRadiance {
         self.split_path(ray, stream, splits, None)
     }
 

@@ -498,7 +498,7 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
         .build()
         .context("cannot start the worker threads")
         .map_err(runtime)?;
-    let (film, stats, indirect_samples) = pool.install(|| {
+    let (film, stats, continuations) = pool.install(|| {
         let context = RenderContext::with_camera(scene, settings.clone(), job.camera.as_ref());
         let mut film = Film::new(settings.width, settings.height);
         let bar = progress_bar(job.budget);
@@ -506,7 +506,7 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
             update_bar(&bar, s, job.budget)
         });
         bar.finish_and_clear();
-        (film, stats, context.indirect_samples)
+        (film, stats, context.continuations.clone())
     });
     let pixels = film.radiance(settings.terms);
     save_image(
@@ -526,10 +526,7 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
         );
     }
     if settings.auto_indirect_samples {
-        println!(
-            "indirect samples: {} per first hit (auto)",
-            indirect_samples
-        );
+        println!("{}", describe_continuations(&continuations));
     }
     println!("skipped: {}", stats.rays.skipped.describe());
     Ok(())
@@ -829,6 +826,24 @@ fn update_bar(bar: &ProgressBar, stats: &RenderStats, budget: Budget) {
         stats.samples_per_pixel,
         stats.mrays_per_second()
     ));
+}
+
+/// What `--indirect-samples auto` chose: one count, or the range of the
+/// regions' counts and their mean over the image.
+fn describe_continuations(continuations: &lumiere::splitting::Continuations) -> String {
+    match continuations.map {
+        None => format!(
+            "indirect samples: {} per first hit (auto)",
+            continuations.count
+        ),
+        Some(ref map) => format!(
+            "indirect samples: {} per first hit (auto), by region over {}×{} regions, {:.2} on average",
+            continuations.label(),
+            map.columns,
+            map.rows,
+            continuations.mean()
+        ),
+    }
 }
 
 fn summary(stats: &RenderStats) -> String {

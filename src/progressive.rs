@@ -31,6 +31,7 @@ use crate::integrator::{RayCounts, RenderContext};
 use crate::render::{PassBuffer, render_pass_cancellable};
 use crate::scene::{Camera, Scene};
 use crate::settings::{RenderSettings, Term, TermSet};
+use crate::splitting::Continuations;
 
 /// Everything that decides what the viewer shows.
 #[derive(Clone, Debug)]
@@ -77,9 +78,9 @@ pub struct Snapshot {
     pub rays: RayCounts,
     /// Pixel samples added since the restart.
     pub pixel_samples: u64,
-    /// Continuations per first hit the samples take (the pilot's choice with
-    /// `auto_indirect_samples`).
-    pub indirect_samples: u32,
+    /// Continuations per first hit the samples take (the pilot's choice,
+    /// region by region, with `auto_indirect_samples`).
+    pub continuations: Continuations,
     /// No more passes will run until the request changes (paused or reached the stop).
     pub idle: bool,
     /// What the image shows (`None` before the first publication).
@@ -315,7 +316,7 @@ impl Worker {
             current.context.settings = settings.clone();
             current.context.camera =
                 CameraRays::new(&request.camera, settings.width, settings.height);
-            current.context.update_indirect_samples();
+            current.context.update_continuations();
             current.film = Arc::new(Mutex::new(Film::new(settings.width, settings.height)));
             *lock(&self.shared.film) = Some(Arc::clone(&current.film));
             current.next_sample = 0;
@@ -444,7 +445,7 @@ impl Worker {
             elapsed: current.elapsed,
             rays: current.rays,
             pixel_samples: current.pixel_samples,
-            indirect_samples: current.context.indirect_samples,
+            continuations: current.context.continuations.clone(),
             idle,
             source: Some(ImageSource {
                 scene: Arc::downgrade(&current.request.scene),

@@ -55,7 +55,7 @@ fn the_cornell_box_splits_its_continuations() {
 
     // and the context built for auto takes it
     let context = RenderContext::new(builtin::cornell(), auto(small(64, 48, TermSet::COURSE)));
-    assert_eq!(context.indirect_samples, independent.count);
+    assert_eq!(context.continuations, independent.continuations());
 }
 
 /// Without L2 no continuation is split, and the pilot does not run.
@@ -173,5 +173,83 @@ fn splitting_does_not_shorten_the_continuations() {
     assert!(
         (four / one - 1.0).abs() < 0.03,
         "{four} reflections per continuation with M = 4, {one} with M = 1"
+    );
+}
+
+/// The pilot's map on the Cornell box: the regions differ, and the
+/// ceiling, lit only by the walls (all L2 and beyond), splits more than
+/// the lit floor in front of the blocks, whose noise is mostly L1's.
+#[test]
+fn the_cornell_box_splits_its_dark_regions_more() {
+    let settings = RenderSettings {
+        sampler: Sampler::Sobol,
+        ..small(96, 96, TermSet::COURSE)
+    };
+    let choice = choice(builtin::cornell(), settings);
+    let map = choice.map.as_ref().expect("the regions differ");
+    assert_eq!((map.columns, map.rows), (8, 8));
+    // the ceiling beside the light, and the floor between the blocks
+    let ceiling = map.at(20, 6);
+    let floor = map.at(48, 88);
+    assert!(
+        ceiling > floor,
+        "ceiling ×{ceiling}, floor ×{floor}: {map:?}"
+    );
+    let (lo, hi) = choice.continuations().range();
+    assert!(lo < hi && hi <= lumiere::splitting::MAX_AUTO_INDIRECT_SAMPLES);
+}
+
+/// Splitting region by region changes the noise, not the mean: with a
+/// map of 1 and 8 continuations in a checkerboard, the image's L2 agrees
+/// with one continuation everywhere, and the pixels of the ×8 regions are
+/// less noisy than with one.
+#[test]
+fn a_map_of_counts_keeps_the_mean_and_cuts_the_noise_where_it_splits() {
+    use lumiere::settings::Term;
+    use lumiere::splitting::{Continuations, SplitMap};
+    let settings = small(32, 24, TermSet::COURSE);
+    let scene = Arc::new(builtin::cornell());
+    let render_with = |continuations: Continuations| {
+        let mut context = RenderContext::new(scene.clone(), settings.clone());
+        context.continuations = continuations;
+        let mut film = Film::new(settings.width, settings.height);
+        render(&context, &mut film, Budget::Samples(64), |_| {});
+        film
+    };
+    let map = SplitMap {
+        width: 32,
+        height: 24,
+        columns: 4,
+        rows: 3,
+        counts: (0..12)
+            .map(|i| if (i + i / 4) % 2 == 0 { 8 } else { 1 })
+            .collect(),
+    };
+    let uniform = render_with(Continuations::uniform(1));
+    let split = render_with(Continuations {
+        count: 1,
+        map: Some(Arc::new(map.clone())),
+    });
+    let (a, b) = (
+        common::mean_and_error(&uniform, Term::L2),
+        common::mean_and_error(&split, Term::L2),
+    );
+    let z = (a.0 - b.0) / (a.1 * a.1 + b.1 * b.1).sqrt();
+    assert!(
+        z.abs() < 4.0,
+        "L2 {a:?} with one continuation, {b:?} with the map: z = {z:.2}"
+    );
+    // the standard errors of the ×8 pixels, summed, in both films
+    let noise = |film: &Film| {
+        let buffer = film.term(Term::L2).expect("L2");
+        (0..film.pixel_count())
+            .filter(|&i| map.at(i as u32 % 32, i as u32 / 32) == 8)
+            .map(|i| buffer.standard_error(i))
+            .sum::<f64>()
+    };
+    let (one, eight) = (noise(&uniform), noise(&split));
+    assert!(
+        eight < 0.6 * one,
+        "×8 pixels: noise {eight:.4} against {one:.4} with one continuation"
     );
 }

@@ -454,8 +454,8 @@ fn with_auto_splitting_the_probe_traces_with_the_renders_count() {
                 .as_ref()
                 .is_some_and(|s| s.settings.auto_indirect_samples)
     });
-    assert!(done.indirect_samples > 1, "{}", done.indirect_samples);
-    harness.get_by_label(&format!("indirect ×{} (auto)", done.indirect_samples));
+    assert!(done.continuations.range().1 > 1, "{:?}", done.continuations);
+    harness.get_by_label(&format!("indirect ×{} (auto)", done.continuations.label()));
     probe_the_back_wall(&mut harness, &done);
 }
 

@@ -316,7 +316,7 @@ impl LumiereApp {
             &self.sent,
             snapshot.generation,
             self.renderer.film(),
-            snapshot.indirect_samples,
+            snapshot.continuations.clone(),
         );
     }
 

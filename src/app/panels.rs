@@ -110,8 +110,11 @@ pub fn status_bar(app: &LumiereApp, ui: &mut egui::Ui, snapshot: &Snapshot) {
             ui.label(format!("{:.1} Mrays/s", snapshot.mrays_per_second()));
             ui.separator();
             if snapshot.source.as_ref().is_some_and(|s| s.settings.auto_indirect_samples) {
-                ui.label(format!("indirect ×{} (auto)", snapshot.indirect_samples))
-                    .on_hover_text("Continuations per first hit chosen by the splitting pilot");
+                ui.label(format!("indirect ×{} (auto)", snapshot.continuations.label()))
+                    .on_hover_text(
+                        "Continuations per first hit chosen by the splitting pilot, \
+                         region by region: more where the indirect light is most of the noise",
+                    );
                 ui.separator();
             }
             let rays = snapshot.rays;

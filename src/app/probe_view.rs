@@ -26,6 +26,7 @@ use crate::probe::{FilmPixel, MAX_PROBE_SAMPLES, PixelProbe, TermProbe, trace_pi
 use crate::progressive::ViewRequest;
 use crate::scene::Scene;
 use crate::settings::{LightMode, RenderSettings, Term, TermSet};
+use crate::splitting::Continuations;
 
 /// Shortest time between two refreshes of the probe while the film converges.
 pub const REFRESH_INTERVAL: Duration = Duration::from_millis(500);
@@ -217,7 +218,7 @@ impl ProbeState {
         request: &ViewRequest,
         generation: u64,
         film: Option<Arc<Mutex<Film>>>,
-        indirect_samples: u32,
+        continuations: Continuations,
     ) {
         if self.job.as_ref().is_some_and(|j| j.is_finished())
             && let Some(job) = self.job.take()
@@ -259,7 +260,7 @@ impl ProbeState {
             std::thread::Builder::new()
                 .name("lumiere probe".into())
                 .spawn(move || {
-                    let result = run_probe(&request, &film, &cache, pixel, indirect_samples);
+                    let result = run_probe(&request, &film, &cache, pixel, continuations);
                     repaint.request_repaint();
                     result
                 })
@@ -274,7 +275,7 @@ fn run_probe(
     film: &Mutex<Film>,
     cache: &Mutex<Option<ProbeContext>>,
     (x, y): (u32, u32),
-    indirect_samples: u32,
+    continuations: Continuations,
 ) -> Option<ProbeResult> {
     let started = Instant::now();
     let settings = &request.settings;
@@ -312,8 +313,8 @@ fn run_probe(
     let context = &mut probe_context.context;
     context.settings = settings.clone();
     context.set_camera(&request.camera);
-    // the film's samples took the render's count: traced again with it
-    context.indirect_samples = indirect_samples;
+    // the film's samples took the render's counts: traced again with them
+    context.continuations = continuations;
     let probe = trace_pixel(context, &pixel);
     Some(ProbeResult {
         probe,

@@ -211,7 +211,7 @@ pub fn shown_snapshot(app: &mut LumiereApp, a: &Arc<Snapshot>) -> Arc<Snapshot> 
         elapsed: a.elapsed,
         rays: a.rays,
         pixel_samples: a.pixel_samples,
-        indirect_samples: a.indirect_samples,
+        continuations: a.continuations.clone(),
         idle: a.idle && b.idle,
         source: a.source.clone(),
     });

@@ -31,7 +31,7 @@ use crate::metrics::{ReferenceImage, image_error};
 use crate::render::{Budget, render};
 use crate::scene::{Scene, builtin};
 use crate::settings::{Adaptive, DisplaySettings, LightSampling, RenderSettings, Sampler};
-use crate::splitting::choose_indirect_samples;
+use crate::splitting::{Continuations, choose_indirect_samples};
 use crate::{Film, RenderContext};
 
 use super::csv::ErrorRow;
@@ -291,12 +291,13 @@ pub fn reference_plan(
     reference_settings.sampler = Sampler::Sobol;
     let mut context = RenderContext::new(scene.clone(), reference_settings);
     let choice = choose_indirect_samples(&context);
-    context.indirect_samples = choice.count;
-    if choice.count <= 1 {
+    context.continuations = choice.continuations();
+    let mean = context.continuations.mean();
+    if mean <= 1.0 {
         return (context, spp);
     }
     let cost = |m: f64| choice.first_rays + m * choice.continuation_rays;
-    let samples = (spp as f64 * cost(1.0) / cost(choice.count as f64)).max(1.0);
+    let samples = (spp as f64 * cost(1.0) / cost(mean)).max(1.0);
     let power_of_two = 2f64.powi(samples.log2().round() as i32) as u32;
     (context, power_of_two.clamp(1, spp.max(1)))
 }
@@ -355,7 +356,7 @@ pub fn reference(
         progress.message(&format!(
             "reference: {}/{}",
             s.samples_per_pixel,
-            reference_label(spp, context.indirect_samples)
+            reference_label(spp, &context.continuations)
         ))
     });
     let radiance = film.radiance(settings.terms);
@@ -370,15 +371,15 @@ pub fn reference(
         width: settings.width,
         height: settings.height,
         radiance,
-        label: reference_label(spp, context.indirect_samples),
+        label: reference_label(spp, &context.continuations),
     };
     Ok((image, path))
 }
 
 /// How a reference of `spp` samples with `continuations` per first hit was rendered.
-fn reference_label(spp: u32, continuations: u32) -> String {
-    match continuations {
-        1 => format!("{spp} spp, Sobol"),
+fn reference_label(spp: u32, continuations: &Continuations) -> String {
+    match continuations.label().as_str() {
+        "1" => format!("{spp} spp, Sobol"),
         m => format!("{spp} spp, Sobol, {m} continuations per first hit"),
     }
 }
@@ -408,8 +409,8 @@ pub fn measure_curves(
             let start = Instant::now();
             let choice = choose_indirect_samples(&context);
             seconds += start.elapsed().as_secs_f64();
-            context.indirect_samples = choice.count;
-            label += &format!(" ×{}", choice.count);
+            context.continuations = choice.continuations();
+            label += &format!(" ×{}", context.continuations.label());
         }
         let mut film = Film::new(settings.width, settings.height);
         for &spp in &counts {
