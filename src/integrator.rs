@@ -33,13 +33,17 @@
 //! w = 1. With `light_samples` = N, the vertex draws N light samples and/or N
 //! gathered directions, each weighted 1/N, the j-th from `stream.split(j, N)`.
 //!
-//! **Reuse.** When N = 1, the vertex has one continuation and the
-//! continuation is drawn from the gathering distribution (`brdf`/`mis` with
-//! `indirect_sampling brdf`, `hemisphere` with `indirect_sampling uniform`),
-//! the continuation ray is the gathered direction: its emission hit gets
-//! w_gather. Otherwise gathered directions are rays of their own and the
-//! continuation's emission hits get w = 0 (the light is estimated by the
-//! vertex's own samples), except after a mirror.
+//! **Reuse.** When N = 1 and the continuations are drawn from the gathering
+//! distribution (`brdf`/`mis` with `indirect_sampling brdf`, `hemisphere`
+//! with `indirect_sampling uniform`), the continuation rays are the
+//! gathered directions: their emission hits get w_gather. With M > 1
+//! continuations (splitting at the first hit, where they are traced anyway
+//! for the later terms) that is one light sample against M BRDF samples of
+//! weight 1/M each, and multi-sample MIS (Veach) compares pdf_light with
+//! M·pdf_brdf in both weights, which still sum to one. Otherwise gathered
+//! directions are rays of their own and the continuation's emission hits
+//! get w = 0 (the light is estimated by the vertex's own samples), except
+//! after a mirror.
 //!
 //! ## The continuation (`indirect_sampling`, `indirect_samples`)
 //!
@@ -444,10 +448,25 @@ enum EmissionWeight {
 enum Gather {
     /// No gathered direction.
     None,
-    /// Directions traced for this purpose only.
+    /// Directions traced for this purpose only, as many as the light samples.
     Separate,
-    /// The continuation ray is the (single) gathered direction.
-    Continuation,
+    /// The vertex's `directions` continuations are its gathered directions
+    /// (one light sample against `directions` BRDF samples, each of weight
+    /// 1/`directions`).
+    Continuation { directions: u32 },
+}
+
+impl Gather {
+    /// BRDF samples per light sample at the vertex: the n_brdf / n_light
+    /// of multi-sample MIS (Veach), whose weights compare n_light·pdf_light
+    /// with n_brdf·pdf_brdf.
+    #[inline(always)]
+    fn directions_per_light_sample(self) -> f32 {
+        match self {
+            Gather::Continuation { directions } => directions as f32,
+            Gather::None | Gather::Separate => 1.0,
+        }
+    }
 }
 
 /// A surface point where the path reflects.
@@ -695,14 +714,19 @@ impl<'a> Walk<'a> {
         if wanted && !self.can_hit_lights {
             self.counts.skipped.gathered += u64::from(settings.light_samples.max(1));
         }
+        // M > 1 continuations double as gathered directions only where
+        // they are traced anyway, to serve a later term
+        let traced_anyway = vertex.index + 1 < self.last_reflection;
         if !(wanted && self.can_hit_lights) {
             Gather::None
         } else if settings.light_samples <= 1
-            && continuations == 1
+            && (continuations == 1 || traced_anyway)
             && gather_directions(settings.light_sampling)
                 == Some(self.continuation_directions(&vertex.brdf))
         {
-            Gather::Continuation
+            Gather::Continuation {
+                directions: continuations,
+            }
         } else {
             Gather::Separate
         }
@@ -743,8 +767,9 @@ impl<'a> Walk<'a> {
             }
         };
         if light_samples {
+            let directions = gather.directions_per_light_sample();
             for j in 0..count {
-                self.light_sample(vertex, share, &stream.split(j, count));
+                self.light_sample(vertex, share, &stream.split(j, count), directions);
             }
         }
         if gather == Gather::Separate {
@@ -754,9 +779,16 @@ impl<'a> Walk<'a> {
         }
     }
 
-    /// One light sample (next-event estimation) at `vertex`.
+    /// One light sample (next-event estimation) at `vertex`, against
+    /// `directions` gathered directions per light sample (MIS).
     #[inline(always)]
-    fn light_sample(&mut self, vertex: &Vertex, throughput: Vec3, stream: &SampleStream) {
+    fn light_sample(
+        &mut self,
+        vertex: &Vertex,
+        throughput: Vec3,
+        stream: &SampleStream,
+        directions: f32,
+    ) {
         let context = self.context;
         let settings = &context.settings;
         let base = dim::vertex_base(vertex.index);
@@ -805,7 +837,8 @@ impl<'a> Walk<'a> {
             let weight = if light.delta || settings.light_sampling != LightSampling::Mis {
                 1.0
             } else {
-                self.mis(light.pdf, vertex.brdf.pdf(vertex.wo_local, wi_local))
+                let brdf_pdf = vertex.brdf.pdf(vertex.wo_local, wi_local);
+                self.mis(light.pdf, directions * brdf_pdf)
             };
             added = contribution * weight;
             self.radiance[term.index()] += added;
@@ -894,7 +927,7 @@ impl<'a> Walk<'a> {
         let next = vertex.index + 1;
         let delta = vertex.brdf.is_delta();
         // how the emission the continuation may hit is weighted (its pdf comes below)
-        let finds_lights = delta || gather == Gather::Continuation;
+        let finds_lights = delta || matches!(gather, Gather::Continuation { .. });
         // past the last term, a continuation only serves to hit an emitter
         if next >= self.last_reflection
             && !(finds_lights && self.can_hit_lights && self.terms.contains_reflections(next))
@@ -916,8 +949,8 @@ impl<'a> Walk<'a> {
         }
         let weight = if sample.delta {
             EmissionWeight::One
-        } else if gather == Gather::Continuation {
-            self.gather_weight(vertex, sample.pdf)
+        } else if matches!(gather, Gather::Continuation { .. }) {
+            self.gather_weight(vertex, gather.directions_per_light_sample() * sample.pdf)
         } else {
             EmissionWeight::Zero
         };

@@ -68,9 +68,10 @@ fn direct_lighting_alone_is_not_split() {
 }
 
 /// A floor under a light and nothing else: a continuation from the floor
-/// finds only the light (weighted 0, the light samples count it) or the
-/// sky, so it brings exactly nothing and must not be split, although it
-/// is traced.
+/// finds only the light (weighted 0 under area light sampling, the light
+/// samples count it) or the sky, so it brings exactly nothing and must not
+/// be split, although it is traced. (Under `mis` it would bring the
+/// light's share found by the BRDF.)
 #[test]
 fn continuations_that_bring_nothing_are_not_split() {
     let mut scene = Scene::default();
@@ -91,7 +92,11 @@ fn continuations_that_bring_nothing_are_not_split() {
         world_from_camera: glam::Affine3A::from_translation(Vec3::new(0.0, 0.0, 1.5)),
         projection: Projection::Perspective { yfov: 1.0 },
     });
-    let c = choice(scene, small(32, 32, TermSet::COURSE));
+    let settings = RenderSettings {
+        light_sampling: lumiere::settings::LightSampling::Area,
+        ..small(32, 32, TermSet::COURSE)
+    };
+    let c = choice(scene, settings);
     assert!(c.continuation_rays > 0.5, "{c:?}");
     assert!(c.between > 0.0, "{c:?}");
     assert_eq!(c.within, 0.0, "{c:?}");

@@ -141,7 +141,9 @@ fn repeated(base: &RenderSettings, light_samples: u32, indirect_samples: u32) ->
 // ── closed forms ─────────────────────────────────────────────────────
 
 /// L1 of a square light over a Lambert plane (Lambert's polygon formula),
-/// with every direct-lighting strategy, and with N = 4 light samples.
+/// with every direct-lighting strategy, with N = 4 light samples, and with
+/// M = 4 continuations that go on to L2 and double as MIS's gathered
+/// directions (one light sample against four BRDF samples).
 #[test]
 fn every_light_strategy_matches_lamberts_polygon_formula() {
     let lights = [(Vec3::new(0.0, 0.0, 1.0), RADIANCE)];
@@ -158,6 +160,13 @@ fn every_light_strategy_matches_lamberts_polygon_formula() {
             4,
             1,
         ));
+    }
+    let with_l2 = small(1, 1, "L1,L2".parse().expect("terms"));
+    for mis_heuristic in [MisHeuristic::Balance, MisHeuristic::Power] {
+        sets.push(RenderSettings {
+            mis_heuristic,
+            ..repeated(&with_l2, 1, 4)
+        });
     }
     for settings in sets {
         let context = RenderContext::new(scene.clone(), settings.clone());
