@@ -6,7 +6,9 @@
 //! them directly. The triangle test is our watertight one
 //! ([`crate::geometry::intersect_triangle`]), not obvhs's Möller–Trumbore.
 //! Sphere lights (point lights made extended) are few and are tested one by
-//! one after the BVH.
+//! one after the BVH. A set of at most 64 triangles (the Cornell box has
+//! 38) skips the traversal: a vector test of all of them at once picks the
+//! few the ray may hit (`accel/blocks.rs`), and only those get the exact test.
 //!
 //! A direction traced only to find a light (the path ends where it lands)
 //! asks [`Accel::visible_emitter`]: when the emissive triangles are few they
@@ -29,6 +31,9 @@ use obvhs::{BvhBuildParams, ploc::PlocBuilder};
 
 use crate::geometry::{Ray, ShearedRay, TriangleHit, gamma};
 use crate::scene::Scene;
+
+mod blocks;
+pub use blocks::TriangleBlocks;
 
 /// An emitting sphere (a sphere light); `light` is its index in the light table.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -241,6 +246,9 @@ struct TriangleBvh {
     scene_triangle: Vec<u32>,
     /// The box around every triangle (min, max corners).
     bounds: [Vec3A; 2],
+    /// The triangles again, in vector blocks, when they are few enough for
+    /// testing them all to beat traversal.
+    blocks: Option<TriangleBlocks>,
 }
 
 impl TriangleBvh {
@@ -271,11 +279,13 @@ impl TriangleBvh {
                 .fold(Vec3A::INFINITY, |m, &p| m.min(p)),
             corner_points.fold(Vec3A::NEG_INFINITY, |m, &p| m.max(p)),
         ];
+        let blocks = TriangleBlocks::new(&vertices);
         Self {
             bvh,
             vertices,
             scene_triangle,
             bounds,
+            blocks,
         }
     }
 
@@ -311,6 +321,17 @@ impl TriangleBvh {
         }
         let sheared = ShearedRay::new(ray.origin, ray.direction);
         let mut best: Option<(usize, TriangleHit)> = None;
+        if let Some(blocks) = &self.blocks {
+            let mut t_max = ray.tmax;
+            for id in set_bits(blocks.candidates(&sheared, t_max)) {
+                let [p0, p1, p2] = self.vertices[id];
+                if let Some(hit) = sheared.intersect(t_max, p0, p1, p2) {
+                    best = Some((id, hit));
+                    t_max = hit.t;
+                }
+            }
+            return best.map(|(id, hit)| (id, self.hit(id, hit)));
+        }
         let mut state = self.bvh.new_traversal(ray.direction);
         let mut node;
         obvhs::traverse!(
@@ -337,6 +358,12 @@ impl TriangleBvh {
             return false;
         }
         let sheared = ShearedRay::new(ray.origin, ray.direction);
+        if let Some(blocks) = &self.blocks {
+            return set_bits(blocks.candidates(&sheared, ray.tmax)).any(|id| {
+                let [p0, p1, p2] = self.vertices[id];
+                counts(id) && sheared.intersect(ray.tmax, p0, p1, p2).is_some()
+            });
+        }
         let mut state = self.bvh.new_traversal(ray.direction);
         let mut node;
         let mut blocked = false;
@@ -358,6 +385,18 @@ impl TriangleBvh {
         }
         blocked
     }
+}
+
+/// The indices of the set bits of `mask`, lowest first.
+#[inline(always)]
+fn set_bits(mut mask: u64) -> impl Iterator<Item = usize> {
+    std::iter::from_fn(move || {
+        (mask != 0).then(|| {
+            let bit = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            bit
+        })
+    })
 }
 
 /// Scenes up to this many triangles get obvhs's most thorough build

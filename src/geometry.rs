@@ -173,6 +173,12 @@ impl ShearedRay {
         }
     }
 
+    /// The ray origin, the dominant axis `kz` and the shear (x, y, z): what a
+    /// vectorised test needs to repeat [`ShearedRay::intersect`]'s first steps.
+    pub(crate) fn frame(&self) -> (Vec3A, u8, Vec3A) {
+        (self.origin, self.kz, self.shear)
+    }
+
     /// (x, y, z) reordered so that axis `kz` comes last, keeping the cyclic order.
     #[inline(always)]
     fn permute_axes(kz: u8, v: Vec3A) -> Vec3A {
