@@ -323,7 +323,11 @@ mod tests {
                 }
             }
         }
-        // aimed rays hit often; the mask keeps few of the misses
+        // aimed rays hit often, and often still at t_max = t; the mask keeps few of the misses
+        assert!(
+            at_t_max > hits / 2,
+            "{at_t_max} hits at t_max = t of {hits}"
+        );
         assert!(hits > tests / 40, "{hits} hits of {tests}");
         assert!(
             candidates - hits < (tests - hits) / 500,
