@@ -82,6 +82,7 @@ impl Hit {
 }
 
 /// The acceleration structure of one scene under one light mode.
+#[derive(Clone)]
 pub struct Accel {
     triangles: TriangleBvh,
     /// The emissive triangles on their own, when they are few enough for a
@@ -133,6 +134,24 @@ impl Accel {
             emissive,
             spheres,
         }
+    }
+
+    /// Whether some query tests a triangle set in blocks instead of traversing its BVH.
+    pub fn tests_in_blocks(&self) -> bool {
+        std::iter::once(&self.triangles)
+            .chain(&self.emitters)
+            .any(|set| set.blocks.is_some())
+    }
+
+    /// A copy whose queries all traverse the CWBVHs: the yardstick the
+    /// bench holds the renderer against.
+    pub fn bvh_only(&self) -> Accel {
+        let mut copy = self.clone();
+        copy.triangles.blocks = None;
+        if let Some(emitters) = &mut copy.emitters {
+            emitters.blocks = None;
+        }
+        copy
     }
 
     /// Number of triangles in the BVH.
@@ -237,7 +256,7 @@ impl Accel {
 }
 
 /// A set of scene triangles in an `obvhs` CWBVH, with their vertices copied in BVH order.
-#[derive(Default)]
+#[derive(Clone, Default)]
 struct TriangleBvh {
     bvh: CwBvh,
     /// Vertices of each triangle, in BVH order.

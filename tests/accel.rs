@@ -153,6 +153,62 @@ fn bvh_closest_hits_match_brute_force() {
     );
 }
 
+/// Few triangles are tested in blocks, not traversed; every query answers
+/// as the CWBVH's traversal does: the Cornell box, and soups of the sizes
+/// around the limit (64), with some emitters.
+#[test]
+fn small_sets_tested_in_blocks_answer_as_the_bvh_does() {
+    let soup = soup_scene(5);
+    let cornell = lumiere::scene::builtin::cornell();
+    let cases = [(&cornell, 38), (&soup, 12), (&soup, 64), (&soup, 65)];
+    for (scene, count) in cases {
+        let accel = Accel::build(scene, |i| i < count, two_spheres());
+        assert_eq!(accel.tests_in_blocks(), count <= 64, "{count} triangles");
+        let bvh = accel.bvh_only();
+        assert!(!bvh.tests_in_blocks());
+        let mut hits = 0;
+        for i in 0..20_000u64 {
+            let mut ray = test_ray(i);
+            if count == 38 {
+                // from inside the box (0..5.5 on each axis)
+                ray.origin = ray.origin.abs() * (5.0 / 14.0) + 0.25;
+            } else if i % 2 == 0 {
+                // at a corner or the centre of one of the triangles
+                let corners = scene.triangles[(i / 2) as usize % count as usize]
+                    .vertices
+                    .map(|v| scene.positions[v as usize]);
+                let target = match i % 8 {
+                    0 => corners[0],
+                    _ => (corners[0] + corners[1] + corners[2]) / 3.0,
+                };
+                ray.direction = (target - ray.origin).normalize();
+            }
+            let (fast, slow) = (accel.closest_hit(&ray), bvh.closest_hit(&ray));
+            assert_eq!(
+                fast.map(|h| h.t()),
+                slow.map(|h| h.t()),
+                "{count} triangles, ray {i}"
+            );
+            hits += usize::from(fast.is_some());
+            assert_eq!(
+                accel.occluded(&ray, None),
+                bvh.occluded(&ray, None),
+                "ray {i}"
+            );
+            let (fast, slow) = (accel.visible_emitter(&ray), bvh.visible_emitter(&ray));
+            assert_eq!(
+                fast.map(|h| h.t()),
+                slow.map(|h| h.t()),
+                "ray {i}: emitters"
+            );
+        }
+        assert!(
+            hits > 2_000,
+            "{count} triangles: {hits} hits, too few to test"
+        );
+    }
+}
+
 /// Rays from inside a closed tessellated sphere, aimed exactly at its
 /// vertices and edge midpoints, must all hit it (watertight test).
 #[test]

@@ -114,6 +114,9 @@ fn a_tiny_bench_writes_every_file_with_its_columns() {
         rows[0][2], rows[1][2],
         "the replay traces as many rays as the renderer"
     );
+    // the Cornell box's queries test blocks: the CWBVH replays the same rays too
+    let cwbvh = rows.iter().find(|r| r[0] == "cwbvh").expect("a cwbvh row");
+    assert_eq!(cwbvh[2], rows[0][2], "{cwbvh:?}");
     let (header, rows) = csv_rows(&folder.join("scaling.csv"));
     assert!(header.starts_with("axis,triangles,width,height,threads,load_seconds,build_seconds"));
     let axes: Vec<&str> = rows.iter().map(|r| r[0].as_str()).collect();

@@ -14,6 +14,12 @@
 //!
 //! ratio = renderer rays/s ÷ replay rays/s: 1 would mean all the time is
 //! traversal; the rest is the cost of everything else per ray.
+//!
+//! A scene small enough for its triangles to be tested in blocks
+//! (`accel/blocks.rs`) skips the BVH: the replay then measures those block
+//! tests, and the same rays are replayed once more through obvhs's CWBVH
+//! traversal ([`Accel::bvh_only`]), the yardstick of the target: the row
+//! `cwbvh`, and `Throughput::bvh_ratio`.
 
 use std::time::{Duration, Instant};
 
@@ -167,7 +173,8 @@ pub fn replay_matches(context: &RenderContext, segment: &PathSegment) -> bool {
 /// One line of the throughput table.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ThroughputRow {
-    /// `renderer` (full passes) or `traversal` (the replay).
+    /// `renderer` (full passes), `traversal` (the replay) or `cwbvh` (the
+    /// replay through the CWBVH, for a scene whose queries test blocks).
     pub measure: String,
     /// `all` or one [`RayKind`] label.
     pub rays_of: String,
@@ -205,6 +212,9 @@ pub struct Throughput {
     pub renderer_rays: RayCounts,
     /// Renderer rays/s ÷ traversal rays/s, all rays.
     pub ratio: f64,
+    /// Renderer rays/s ÷ CWBVH traversal rays/s, when the renderer's
+    /// queries test blocks instead (else `ratio` is that already).
+    pub bvh_ratio: Option<f64>,
 }
 
 /// The rays of `passes` passes of `context` as [`record_segments`] logs them.
@@ -269,10 +279,24 @@ pub fn measure(context: &RenderContext, passes: u32, repeats: u32) -> Throughput
             seconds: fastest(&of_kind).as_secs_f64(),
         });
     }
-    let ratio = rows[0].mrays_per_second() / rows[1].mrays_per_second().max(1e-12);
+    let renderer_rate = rows[0].mrays_per_second();
+    let ratio = renderer_rate / rows[1].mrays_per_second().max(1e-12);
+    let mut bvh_ratio = None;
+    if context.accel.tests_in_blocks() {
+        let bvh_only = context.accel.bvh_only();
+        let row = ThroughputRow {
+            measure: "cwbvh".into(),
+            rays_of: "all".into(),
+            rays: rays.len() as u64,
+            seconds: fastest_replay(&bvh_only, &rays, repeats).as_secs_f64(),
+        };
+        bvh_ratio = Some(renderer_rate / row.mrays_per_second().max(1e-12));
+        rows.push(row);
+    }
     Throughput {
         rows,
         renderer_rays,
         ratio,
+        bvh_ratio,
     }
 }
