@@ -292,14 +292,18 @@ impl SampleStream {
         Vec2::from(sobol_pair(point, scramble))
     }
 
-    /// The point index in its sequence, and the scramble of `dimension`'s sequence.
+    /// The point index in its sequence, and the scrambles of `dimension`'s
+    /// sequence: one hash of (pixel key, dimension, sequence).
     #[inline]
-    fn sobol_point(&self, dimension: u32) -> (u32, u32) {
+    fn sobol_point(&self, dimension: u32) -> (u32, SobolScrambles) {
         let sequence = self.index / SOBOL_SEQUENCE_LENGTH;
         let point = (self.index % SOBOL_SEQUENCE_LENGTH) as u32;
-        let scramble =
-            mix64(dimension_key(self.key, dimension) ^ sequence.wrapping_mul(SAMPLE_SPREAD)) as u32;
-        (point, scramble)
+        let hash = mix64(
+            self.key
+                ^ (dimension as u64 + 1).wrapping_mul(DIMENSION_SPREAD)
+                ^ sequence.wrapping_mul(SAMPLE_SPREAD),
+        );
+        (point, SobolScrambles::of(hash))
     }
 }
 
@@ -323,39 +327,56 @@ static SOBOL_BY_BYTE: std::sync::LazyLock<[[[u32; 256]; 2]; 2]> = std::sync::Laz
     tables
 });
 
-/// The two bytes (top first) of point `index` after `sobol_burley`'s
-/// index shuffle for `seed`, in reversed-bit form: the look-up keys of
-/// [`SOBOL_BY_BYTE`].
+/// The three scrambles of one dimension's sequence: the index shuffle and
+/// the Owen scramble of each of Sobol's dimensions 0 and 1, cut from one
+/// 64-bit hash (`sobol_burley::sample_4d` hashes a 32-bit seed three times
+/// instead).
+#[derive(Clone, Copy, Debug)]
+struct SobolScrambles {
+    shuffle: u32,
+    lanes: [u32; 2],
+}
+
+impl SobolScrambles {
+    #[inline(always)]
+    fn of(hash: u64) -> Self {
+        Self {
+            shuffle: (hash >> 32) as u32,
+            lanes: [hash as u32, (hash.wrapping_mul(SAMPLE_SPREAD) >> 32) as u32],
+        }
+    }
+}
+
+/// The two bytes (top first) of point `index` after the index shuffle, in
+/// reversed-bit form: the look-up keys of [`SOBOL_BY_BYTE`].
 #[inline(always)]
-fn shuffled_bytes(index: u32, seed: u32) -> (usize, usize) {
-    use sobol_burley::parts::{hash, owen_scramble_rev};
-    let shuffled = owen_scramble_rev(index.reverse_bits(), hash(seed ^ 0x79c6_8e4a));
+fn shuffled_bytes(index: u32, scrambles: SobolScrambles) -> (usize, usize) {
+    use sobol_burley::parts::owen_scramble_rev;
+    let shuffled = owen_scramble_rev(index.reverse_bits(), scrambles.shuffle);
     ((shuffled >> 24) as usize, (shuffled >> 16 & 0xff) as usize)
 }
 
-/// Owen-scrambles lane `lane` (0 or 1) of dimension set 0 as `sobol_burley::sample_4d` does.
+/// Owen-scrambles Sobol dimension `lane` (0 or 1), given in reversed-bit form.
 #[inline(always)]
-fn scrambled_lane(sobol_rev: u32, seed: u32, lane: usize) -> f32 {
-    use sobol_burley::parts::{hash, owen_scramble_rev, u32_to_f32_norm};
-    const LANE_KEYS: [u32; 2] = [0x912f_69ba, 0x174f_18ab];
-    let scramble = hash(seed.wrapping_mul(0x9c8f_2d3b) ^ LANE_KEYS[lane]);
-    u32_to_f32_norm(owen_scramble_rev(sobol_rev, scramble).reverse_bits())
+fn scrambled_lane(sobol_rev: u32, scrambles: SobolScrambles, lane: usize) -> f32 {
+    use sobol_burley::parts::{owen_scramble_rev, u32_to_f32_norm};
+    u32_to_f32_norm(owen_scramble_rev(sobol_rev, scrambles.lanes[lane]).reverse_bits())
 }
 
-/// `sobol_burley::sample(index, 0, seed)`, bit for bit, by table.
+/// Point `index` of Sobol's dimension 0 under `scrambles`, by table.
 #[inline]
-fn sobol_0(index: u32, seed: u32) -> f32 {
-    let (high, low) = shuffled_bytes(index, seed);
+fn sobol_0(index: u32, scrambles: SobolScrambles) -> f32 {
+    let (high, low) = shuffled_bytes(index, scrambles);
     let by_byte = &SOBOL_BY_BYTE[0];
-    scrambled_lane(by_byte[0][high] ^ by_byte[1][low], seed, 0)
+    scrambled_lane(by_byte[0][high] ^ by_byte[1][low], scrambles, 0)
 }
 
-/// Lanes 0 and 1 of `sobol_burley::sample_4d(index, 0, seed)`, bit for bit, by table.
+/// Point `index` of Sobol's dimensions 0 and 1 under `scrambles`, by table.
 #[inline]
-fn sobol_pair(index: u32, seed: u32) -> [f32; 2] {
-    let (high, low) = shuffled_bytes(index, seed);
+fn sobol_pair(index: u32, scrambles: SobolScrambles) -> [f32; 2] {
+    let (high, low) = shuffled_bytes(index, scrambles);
     let tables = &*SOBOL_BY_BYTE;
-    let lane = |d: usize| scrambled_lane(tables[d][0][high] ^ tables[d][1][low], seed, d);
+    let lane = |d: usize| scrambled_lane(tables[d][0][high] ^ tables[d][1][low], scrambles, d);
     [lane(0), lane(1)]
 }
 
@@ -652,15 +673,23 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_table_sobol_is_sobol_burleys_bit_for_bit() {
-        for seed in [0, 1, 0x9e37_79b9, u32::MAX] {
-            for index in (0..1 << 16).step_by(7).chain([0xffff, 0x8000, 0x00ff]) {
-                let reference = sobol_burley::sample_4d(index, 0, seed);
-                let pair = sobol_pair(index, seed);
-                assert_eq!(pair[0].to_bits(), reference[0].to_bits(), "{index} {seed}");
-                assert_eq!(pair[1].to_bits(), reference[1].to_bits(), "{index} {seed}");
-                let single = sobol_burley::sample(index, 0, seed);
-                assert_eq!(sobol_0(index, seed).to_bits(), single.to_bits());
+    fn the_table_sobol_is_the_crates_loop_bit_for_bit() {
+        use sobol_burley::parts::{owen_scramble_rev, sobol_rev, u32_to_f32_norm};
+        for hash in [0, 1, 0x9e37_79b9_7f4a_7c15, u64::MAX] {
+            let scrambles = SobolScrambles::of(hash);
+            for index in (0u32..1 << 16).step_by(7).chain([0xffff, 0x8000, 0x00ff]) {
+                let shuffled = owen_scramble_rev(index.reverse_bits(), scrambles.shuffle);
+                let reference = [0, 1].map(|d| {
+                    let rev = owen_scramble_rev(sobol_rev(shuffled, d as u32), scrambles.lanes[d]);
+                    u32_to_f32_norm(rev.reverse_bits())
+                });
+                let pair = sobol_pair(index, scrambles);
+                assert_eq!(
+                    pair.map(f32::to_bits),
+                    reference.map(f32::to_bits),
+                    "{index} {hash}"
+                );
+                assert_eq!(sobol_0(index, scrambles).to_bits(), reference[0].to_bits());
             }
         }
     }
