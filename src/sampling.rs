@@ -143,6 +143,9 @@ pub struct SampleStream {
     key: u64,
     /// Others than independent: the sample index, splits folded in (n·N + j).
     index: u64,
+    /// Sobol: the index's point in its sequence, bits reversed (the form
+    /// every dimension's shuffle reads, reversed once here).
+    point_rev: u32,
 }
 
 impl SampleStream {
@@ -159,11 +162,13 @@ impl SampleStream {
                 sampler,
                 key: mix64(pixel_key ^ sample.wrapping_mul(SAMPLE_SPREAD)),
                 index: 0,
+                point_rev: 0,
             },
             Sampler::Stratified | Sampler::Sobol => Self {
                 sampler,
                 key: pixel_key,
                 index: sample,
+                point_rev: sobol_point_rev(sample),
             },
         }
     }
@@ -186,13 +191,17 @@ impl SampleStream {
                 key: mix64(self.key ^ mix64((index as u64) << 32 | count as u64)),
                 ..*self
             },
-            Sampler::Stratified | Sampler::Sobol => Self {
-                index: self
+            Sampler::Stratified | Sampler::Sobol => {
+                let index = self
                     .index
                     .wrapping_mul(count as u64)
-                    .wrapping_add(index as u64),
-                ..*self
-            },
+                    .wrapping_add(index as u64);
+                Self {
+                    index,
+                    point_rev: sobol_point_rev(index),
+                    ..*self
+                }
+            }
         }
     }
 
@@ -292,19 +301,24 @@ impl SampleStream {
         Vec2::from(sobol_pair(point, scramble))
     }
 
-    /// The point index in its sequence, and the scrambles of `dimension`'s
+    /// The point index in its sequence (bits reversed), and the scrambles of `dimension`'s
     /// sequence: one hash of (pixel key, dimension, sequence).
     #[inline]
     fn sobol_point(&self, dimension: u32) -> (u32, SobolScrambles) {
         let sequence = self.index / SOBOL_SEQUENCE_LENGTH;
-        let point = (self.index % SOBOL_SEQUENCE_LENGTH) as u32;
         let hash = mix64(
             self.key
                 ^ (dimension as u64 + 1).wrapping_mul(DIMENSION_SPREAD)
                 ^ sequence.wrapping_mul(SAMPLE_SPREAD),
         );
-        (point, SobolScrambles::of(hash))
+        (self.point_rev, SobolScrambles::of(hash))
     }
+}
+
+/// Sample `index`'s point in its Sobol sequence, bits reversed.
+#[inline]
+fn sobol_point_rev(index: u64) -> u32 {
+    ((index % SOBOL_SEQUENCE_LENGTH) as u32).reverse_bits()
 }
 
 /// Sobol's dimensions 0 and 1 in `sobol_burley`'s reversed-bit form, per
@@ -347,12 +361,12 @@ impl SobolScrambles {
     }
 }
 
-/// The two bytes (top first) of point `index` after the index shuffle, in
-/// reversed-bit form: the look-up keys of [`SOBOL_BY_BYTE`].
+/// The two bytes (top first) of point `index_rev` (bits reversed) after the
+/// index shuffle, in reversed-bit form: the look-up keys of [`SOBOL_BY_BYTE`].
 #[inline(always)]
-fn shuffled_bytes(index: u32, scrambles: SobolScrambles) -> (usize, usize) {
+fn shuffled_bytes(index_rev: u32, scrambles: SobolScrambles) -> (usize, usize) {
     use sobol_burley::parts::owen_scramble_rev;
-    let shuffled = owen_scramble_rev(index.reverse_bits(), scrambles.shuffle);
+    let shuffled = owen_scramble_rev(index_rev, scrambles.shuffle);
     ((shuffled >> 24) as usize, (shuffled >> 16 & 0xff) as usize)
 }
 
@@ -363,18 +377,18 @@ fn scrambled_lane(sobol_rev: u32, scrambles: SobolScrambles, lane: usize) -> f32
     u32_to_f32_norm(owen_scramble_rev(sobol_rev, scrambles.lanes[lane]).reverse_bits())
 }
 
-/// Point `index` of Sobol's dimension 0 under `scrambles`, by table.
+/// Point `index_rev` (bits reversed) of Sobol's dimension 0 under `scrambles`, by table.
 #[inline]
-fn sobol_0(index: u32, scrambles: SobolScrambles) -> f32 {
-    let (high, low) = shuffled_bytes(index, scrambles);
+fn sobol_0(index_rev: u32, scrambles: SobolScrambles) -> f32 {
+    let (high, low) = shuffled_bytes(index_rev, scrambles);
     let by_byte = &SOBOL_BY_BYTE[0];
     scrambled_lane(by_byte[0][high] ^ by_byte[1][low], scrambles, 0)
 }
 
-/// Point `index` of Sobol's dimensions 0 and 1 under `scrambles`, by table.
+/// Point `index_rev` (bits reversed) of Sobol's dimensions 0 and 1 under `scrambles`, by table.
 #[inline]
-fn sobol_pair(index: u32, scrambles: SobolScrambles) -> [f32; 2] {
-    let (high, low) = shuffled_bytes(index, scrambles);
+fn sobol_pair(index_rev: u32, scrambles: SobolScrambles) -> [f32; 2] {
+    let (high, low) = shuffled_bytes(index_rev, scrambles);
     let tables = &*SOBOL_BY_BYTE;
     let lane = |d: usize| scrambled_lane(tables[d][0][high] ^ tables[d][1][low], scrambles, d);
     [lane(0), lane(1)]
@@ -683,13 +697,14 @@ mod tests {
                     let rev = owen_scramble_rev(sobol_rev(shuffled, d as u32), scrambles.lanes[d]);
                     u32_to_f32_norm(rev.reverse_bits())
                 });
-                let pair = sobol_pair(index, scrambles);
+                let pair = sobol_pair(index.reverse_bits(), scrambles);
                 assert_eq!(
                     pair.map(f32::to_bits),
                     reference.map(f32::to_bits),
                     "{index} {hash}"
                 );
-                assert_eq!(sobol_0(index, scrambles).to_bits(), reference[0].to_bits());
+                let single = sobol_0(index.reverse_bits(), scrambles);
+                assert_eq!(single.to_bits(), reference[0].to_bits());
             }
         }
     }
