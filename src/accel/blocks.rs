@@ -259,6 +259,9 @@ mod tests {
     use super::*;
     use crate::sampling::mix64;
 
+    /// A test ray: origin, direction, t_max.
+    type TestRay = (Vec3A, Vec3A, f32);
+
     /// Fixed-seed numbers in [−1, 1).
     struct Numbers(u64);
 
@@ -276,7 +279,7 @@ mod tests {
     /// at shared edges, vertices and random points, some from far away.
     /// Odd seeds put the scene far from the origin, where the sheared
     /// coordinates are large and the edge functions' roundings matter most.
-    fn cases(seed: u64) -> (Vec<[Vec3A; 3]>, Vec<(Vec3A, Vec3A, f32)>) {
+    fn cases(seed: u64) -> (Vec<[Vec3A; 3]>, Vec<TestRay>) {
         let mut numbers = Numbers(seed);
         let centre = Vec3A::splat(if seed % 2 == 1 { 3000.0 } else { 0.0 });
         let mut triangles = Vec::new();
