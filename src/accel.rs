@@ -33,7 +33,7 @@ use crate::geometry::{Ray, ShearedRay, TriangleHit, gamma};
 use crate::scene::Scene;
 
 mod blocks;
-pub use blocks::TriangleBlocks;
+use blocks::TriangleBlocks;
 
 /// An emitting sphere (a sphere light); `light` is its index in the light table.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -122,8 +122,9 @@ impl TriangleBlocks {
         (self.kernel)(&self.blocks, self.tail.as_ref(), &ray) & self.occupied
     }
 
-    /// [`TriangleBlocks::candidates`] with the baseline kernel (for tests).
-    pub fn candidates_baseline(&self, ray: &ShearedRay, t_max: f32) -> u64 {
+    /// [`TriangleBlocks::candidates`] with the baseline kernel.
+    #[cfg(test)]
+    fn candidates_baseline(&self, ray: &ShearedRay, t_max: f32) -> u64 {
         Self {
             kernel: candidates_plain,
             ..self.clone()
