@@ -8,7 +8,7 @@
 //! | model | f_r(wo, wi) | sampling |
 //! |---|---|---|
 //! | Lambert | ρ / π | cosine hemisphere, pdf cos θ / π |
-//! | Phong (normalised, modified) | kd/π + ks (n+2)/(2π) cosⁿ α | lobe picked ∝ luminance of kd, ks; cosine hemisphere or cosⁿ α around the mirror direction (pdf (n+1)/(2π) cosⁿ α) |
+//! | Phong (normalised, modified) | kd/π + ks (n+2)/(2π) cosⁿ α | lobe picked ∝ luminance of kd, ks by the first number of the pair, which then places the direction; cosine hemisphere or cosⁿ α around the mirror direction (pdf (n+1)/(2π) cosⁿ α) |
 //! | Mirror | R δ(wi − mirror(wo)) / cos θ | the mirror direction (a Dirac) |
 //!
 //! α is the angle between `wi` and the mirror direction of `wo`. `eval`
@@ -21,7 +21,7 @@ use std::f32::consts::{FRAC_1_PI, PI};
 
 use crate::color::luminance;
 use crate::geometry::Frame;
-use crate::sampling::{cosine_hemisphere, cosine_hemisphere_pdf, phong_lobe, phong_lobe_pdf};
+use crate::sampling::{cosine_hemisphere, cosine_hemisphere_pdf, phong_lobe};
 
 /// A reflection model with its parameters resolved at one surface point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -57,11 +57,6 @@ impl Brdf {
         matches!(self, Brdf::Mirror { .. })
     }
 
-    /// Whether sampling it first picks a lobe (with a number of its own).
-    pub fn chooses_lobe(&self) -> bool {
-        matches!(self, Brdf::Phong { .. })
-    }
-
     /// Whether the model reflects nothing (a black surface).
     pub fn is_black(&self) -> bool {
         match *self {
@@ -72,12 +67,26 @@ impl Brdf {
     }
 
     /// f_r(wo, wi), without the cosine.
+    #[inline]
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        self.eval_and_pdf(wo, wi).0
+    }
+
+    /// Solid-angle density with which [`Brdf::sample`] returns `wi`.
+    #[inline]
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.eval_and_pdf(wo, wi).1
+    }
+
+    /// [`Brdf::eval`] and [`Brdf::pdf`] together: a Phong model raises cos α
+    /// to the n-th once for both (`powf` was a twentieth of a Phong render).
+    #[inline]
+    pub fn eval_and_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
         if wo.z <= 0.0 || wi.z <= 0.0 {
-            return Vec3::ZERO;
+            return (Vec3::ZERO, 0.0);
         }
         match *self {
-            Brdf::Lambert { albedo } => albedo * FRAC_1_PI,
+            Brdf::Lambert { albedo } => (albedo * FRAC_1_PI, cosine_hemisphere_pdf(wi.z)),
             Brdf::Phong { kd, ks, exponent } => {
                 // the lobe is zero past 90° from the mirror direction, also
                 // for n = 0 (where powf would give 0⁰ = 1): f then vanishes
@@ -88,9 +97,13 @@ impl Brdf {
                 } else {
                     0.0
                 };
-                kd * FRAC_1_PI + ks * ((exponent + 2.0) / (2.0 * PI) * lobe)
+                let p_spec = Self::specular_probability(kd, ks);
+                let f = kd * FRAC_1_PI + ks * ((exponent + 2.0) / (2.0 * PI) * lobe);
+                let pdf = (1.0 - p_spec) * cosine_hemisphere_pdf(wi.z)
+                    + p_spec * ((exponent + 1.0) / (2.0 * PI) * lobe);
+                (f, pdf)
             }
-            Brdf::Mirror { .. } => Vec3::ZERO,
+            Brdf::Mirror { .. } => (Vec3::ZERO, 0.0),
         }
     }
 
@@ -100,26 +113,13 @@ impl Brdf {
         if d + s <= 0.0 { 0.0 } else { s / (d + s) }
     }
 
-    /// Solid-angle density with which [`Brdf::sample`] returns `wi`.
-    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return 0.0;
-        }
-        match *self {
-            Brdf::Lambert { .. } => cosine_hemisphere_pdf(wi.z),
-            Brdf::Phong { kd, ks, exponent } => {
-                let p_spec = Self::specular_probability(kd, ks);
-                let cos_alpha = wi.dot(reflect(wo));
-                (1.0 - p_spec) * cosine_hemisphere_pdf(wi.z)
-                    + p_spec * phong_lobe_pdf(cos_alpha, exponent)
-            }
-            Brdf::Mirror { .. } => 0.0,
-        }
-    }
-
-    /// Draws `wi` given `wo`; `u_lobe` picks a lobe, `u` the direction.
-    /// `None` when the drawn direction is below the surface or nothing is reflected.
-    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BrdfSample> {
+    /// Draws `wi` given `wo` from the pair `u`. A Phong model picks its lobe
+    /// with `u.x` and stretches the part of `u.x` that picked it back over
+    /// [0, 1) (`pick_lobe`), so a stratified pair stays stratified over the
+    /// two lobes together instead of being split between them by an
+    /// unrelated number. `None` when the drawn direction is below the
+    /// surface or nothing is reflected.
+    pub fn sample(&self, wo: Vec3, u: Vec2) -> Option<BrdfSample> {
         if wo.z <= 0.0 || self.is_black() {
             return None;
         }
@@ -134,24 +134,39 @@ impl Brdf {
             }
             Brdf::Lambert { .. } => cosine_hemisphere(u),
             Brdf::Phong { kd, ks, exponent } => {
-                if u_lobe < Self::specular_probability(kd, ks) {
+                let (specular, u) = pick_lobe(Self::specular_probability(kd, ks), u);
+                if specular {
                     Frame::from_z(reflect(wo)).to_world(phong_lobe(u, exponent))
                 } else {
                     cosine_hemisphere(u)
                 }
             }
         };
-        let pdf = self.pdf(wo, wi);
+        let (f, pdf) = self.eval_and_pdf(wo, wi);
         if wi.z <= 0.0 || pdf <= 0.0 {
             return None;
         }
         Some(BrdfSample {
             wi,
-            weight: self.eval(wo, wi) * wi.z / pdf,
+            weight: f * wi.z / pdf,
             pdf,
             delta: false,
         })
     }
+}
+
+/// Whether `u.x` picks the lobe of probability `p` (the interval [0, p)),
+/// and the pair with `u.x` mapped back onto [0, 1) from the interval that
+/// picked.
+#[inline]
+fn pick_lobe(p: f32, u: Vec2) -> (bool, Vec2) {
+    const BELOW_ONE: f32 = 1.0 - f32::EPSILON / 2.0;
+    let (picked, x) = if u.x < p {
+        (true, u.x / p)
+    } else {
+        (false, (u.x - p) / (1.0 - p))
+    };
+    (picked, Vec2::new(x.min(BELOW_ONE), u.y))
 }
 
 #[cfg(test)]
@@ -164,7 +179,7 @@ mod tests {
         let mut sum = Vec3::ZERO;
         for i in 0..n {
             let s = SampleStream::new(1, 0, i as u64);
-            if let Some(sample) = brdf.sample(wo, s.uniform(0), s.uniform2(1)) {
+            if let Some(sample) = brdf.sample(wo, s.uniform2(1)) {
                 sum += sample.weight;
             }
         }
@@ -230,13 +245,49 @@ mod tests {
         assert!(mean < 1.0, "energy {mean}");
     }
 
+    /// The numbers that pick a lobe, stretched, are spread evenly over
+    /// [0, 1) again: n equally spaced u.x give each lobe its share of them,
+    /// equally spaced (to rounding), so stratification survives the pick.
+    #[test]
+    fn a_picked_lobe_gets_its_share_of_the_pair_spread_evenly() {
+        let n = 1 << 12;
+        for p in [0.0, 0.1, 0.37, 0.5, 0.9, 1.0] {
+            let mut picked: [Vec<f32>; 2] = [Vec::new(), Vec::new()];
+            for i in 0..n {
+                let x = (i as f32 + 0.5) / n as f32;
+                let (specular, u) = pick_lobe(p, Vec2::new(x, 0.25));
+                assert!(
+                    (0.0..1.0).contains(&u.x) && u.y == 0.25,
+                    "p {p}, x {x}: {u}"
+                );
+                picked[specular as usize].push(u.x);
+            }
+            let expected = (p * n as f32).round() as usize;
+            assert!(
+                picked[1].len().abs_diff(expected) <= 1,
+                "p {p}: {} specular",
+                picked[1].len()
+            );
+            for lobe in picked.iter().filter(|l| l.len() > 1) {
+                let spacing = 1.0 / lobe.len() as f32;
+                for pair in lobe.windows(2) {
+                    let step = pair[1] - pair[0];
+                    assert!(
+                        (step - spacing).abs() < 1e-3 * spacing + 1e-6,
+                        "p {p}: step {step}"
+                    );
+                }
+            }
+        }
+    }
+
     #[test]
     fn mirror_is_a_dirac() {
         let brdf = Brdf::Mirror {
             reflectance: Vec3::splat(0.9),
         };
         let wo = Vec3::new(0.6, 0.0, 0.8);
-        let s = brdf.sample(wo, 0.0, Vec2::ZERO).unwrap();
+        let s = brdf.sample(wo, Vec2::ZERO).unwrap();
         assert!(s.delta);
         assert_eq!(s.wi, Vec3::new(-0.6, 0.0, 0.8));
         assert_eq!(brdf.eval(wo, s.wi), Vec3::ZERO);

@@ -819,7 +819,8 @@ impl<'a> Walk<'a> {
             return;
         };
         let wi_local = vertex.frame.to_local(light.wi);
-        let f_cos = vertex.brdf.eval(vertex.wo_local, wi_local) * wi_local.z;
+        let (f, brdf_pdf) = vertex.brdf.eval_and_pdf(vertex.wo_local, wi_local);
+        let f_cos = f * wi_local.z;
         let contribution = throughput * f_cos * light.radiance / light.pdf;
         // a light behind the surface (or a zero BRDF) gets no shadow ray
         if contribution.max_element() <= 0.0 || light.wi.dot(vertex.ng) <= 0.0 {
@@ -837,7 +838,6 @@ impl<'a> Walk<'a> {
             let weight = if light.delta || settings.light_sampling != LightSampling::Mis {
                 1.0
             } else {
-                let brdf_pdf = vertex.brdf.pdf(vertex.wo_local, wi_local);
                 self.mis(light.pdf, directions * brdf_pdf)
             };
             added = contribution * weight;
@@ -868,7 +868,7 @@ impl<'a> Walk<'a> {
             vertex.wo_local,
             directions,
             stream,
-            (base + dim::GATHER_LOBE, base + dim::GATHER_DIRECTION),
+            base + dim::GATHER_DIRECTION,
         ) else {
             return;
         };
@@ -941,7 +941,7 @@ impl<'a> Walk<'a> {
             vertex.wo_local,
             self.continuation_directions(&vertex.brdf),
             stream,
-            (base + dim::BRDF_LOBE, base + dim::BRDF_DIRECTION),
+            base + dim::BRDF_DIRECTION,
         )?;
         let wi = vertex.frame.to_world(sample.wi).normalize();
         if wi.dot(vertex.ng) <= 0.0 {
@@ -1109,29 +1109,24 @@ fn gather_directions(strategy: LightSampling) -> Option<Directions> {
 
 /// A direction (local frame) drawn from `directions` at a vertex of `brdf`
 /// seen from `wo`, with f cos θ / pdf and its pdf; `None` if it reflects
-/// nothing. The numbers come from `stream`'s dimensions (lobe choice,
-/// direction pair), each read only if the routine uses it.
+/// nothing. The numbers come from `stream`'s direction pair, read only if
+/// the routine uses it (a mirror does not).
 #[inline(always)]
 fn draw_direction(
     brdf: &Brdf,
     wo: Vec3,
     directions: Directions,
     stream: &SampleStream,
-    (lobe_dimension, direction_dimension): (u32, u32),
+    direction_dimension: u32,
 ) -> Option<BrdfSample> {
     let (wi, pdf) = match directions {
         Directions::Brdf => {
-            let u_lobe = if brdf.chooses_lobe() {
-                stream.uniform(lobe_dimension)
-            } else {
-                0.0
-            };
             let u = if brdf.is_delta() {
                 glam::Vec2::ZERO
             } else {
                 stream.uniform2(direction_dimension)
             };
-            return brdf.sample(wo, u_lobe, u);
+            return brdf.sample(wo, u);
         }
         Directions::Uniform => (
             uniform_hemisphere(stream.uniform2(direction_dimension)),

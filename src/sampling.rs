@@ -80,21 +80,17 @@ pub mod dim {
     /// Position inside the pixel (2D).
     pub const PIXEL: u32 = 0;
     /// Dimensions used at path vertex `vertex` start at `vertex_base(vertex)`.
-    pub const PER_VERTEX: u32 = 10;
+    pub const PER_VERTEX: u32 = 8;
     /// Which light a light sample picks, in scenes of too many lights for
     /// the position pair to pick it (`LightTable::pick_with_position`).
     pub const LIGHT_SELECT: u32 = 0;
     /// Where on the light (2D); with few lights, also which light.
     pub const LIGHT_POSITION: u32 = 1;
-    /// Lobe of a direction gathered to find lights (BRDF or hemisphere strategy).
-    pub const GATHER_LOBE: u32 = 3;
-    /// Direction gathered to find lights (2D).
-    pub const GATHER_DIRECTION: u32 = 4;
-    /// Lobe of the next reflection.
-    pub const BRDF_LOBE: u32 = 6;
-    /// Direction of the next reflection (2D).
-    pub const BRDF_DIRECTION: u32 = 7;
-    pub const RUSSIAN_ROULETTE: u32 = 9;
+    /// Direction gathered to find lights (2D); with a Phong BRDF, also its lobe.
+    pub const GATHER_DIRECTION: u32 = 3;
+    /// Direction of the next reflection (2D); with a Phong BRDF, also its lobe.
+    pub const BRDF_DIRECTION: u32 = 5;
+    pub const RUSSIAN_ROULETTE: u32 = 7;
 
     /// First dimension of path vertex `vertex` (0 = the first surface hit).
     pub const fn vertex_base(vertex: u32) -> u32 {
