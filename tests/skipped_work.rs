@@ -66,6 +66,24 @@ fn russian_roulette_ends_some_l3_paths() {
     assert!(rays.skipped.describe().contains("Russian roulette"));
 }
 
+/// Russian roulette starts after the fourth reflection: capped at three
+/// reflections (their last continuation traced only to find the emitter)
+/// no path is ended by it, capped at four some are.
+#[test]
+fn russian_roulette_starts_after_the_fourth_reflection() {
+    let roulette = |max_bounces: u32| {
+        let mut settings = small(16, 16, TermSet::ALL);
+        settings.max_bounces = max_bounces;
+        let context = RenderContext::new(builtin::furnace(0.6, 1.0), settings.clone());
+        let mut film = Film::new(settings.width, settings.height);
+        let rays = render(&context, &mut film, Budget::Samples(4), |_| {}).rays;
+        assert!(rays.bounce >= 2 * rays.camera, "{rays:?}");
+        rays.skipped.roulette
+    };
+    assert_eq!(roulette(3), 0);
+    assert!(roulette(4) > 0);
+}
+
 #[test]
 fn light_searches_that_meet_no_light_skip_the_scene_search_and_are_counted() {
     // L0,L1 with MIS: every continuation only looks for the light

@@ -17,7 +17,7 @@ with lumiere's own definitions (src/metrics.rs):
 (`--brdf`, `--sphere-lights` and `--point-emitters` are lumiere's `--brdf`,
 `--lights area` and `--lights point`,
 as in mitsuba_render.py.) Unlike mitsuba_render.py's references, the timed
-renders use Russian roulette as lumiere does (`--rr-depth 3`): both end
+renders use Russian roulette as lumiere does (`--rr-depth 4`): both end
 deep paths the same way, which only matters past L2.
 
 The CSV's header is `renderer,estimator,spp,seconds,rmse,relmse`, one row a
@@ -52,10 +52,10 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import mitsuba_render as mr  # noqa: E402  (the scene conversion, shared)
 
 RELMSE_EPSILON = 1e-2  # lumiere's src/metrics.rs
-# lumiere's Russian roulette starts after the third reflection (survival
-# min(max throughput, 0.95)); Mitsuba's rr_depth 3 starts it at the same
+# lumiere's Russian roulette starts after the fourth reflection (survival
+# min(max throughput, 0.95)); Mitsuba's rr_depth 4 starts it at the same
 # vertex with the same survival. It never touches max_depth <= 3 (L0-L2).
-LUMIERE_RR_DEPTH = 3
+LUMIERE_RR_DEPTH = 4
 
 
 def image_error(image, reference):
