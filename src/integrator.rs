@@ -118,7 +118,7 @@ pub struct RayCounts {
 /// The reflections after which Russian roulette may end a path: from the
 /// fourth on, so that it only touches L3+ and never its largest part, the
 /// third reflection's (its light samples and what the continuation after
-/// it hits). Starting after the third took 8% longer to reach relMSE 10⁻³
+/// it hits). Starting after the third took 8–15% longer to reach relMSE 10⁻³
 /// on the Cornell box with every term (Sobol, 256×256, `docs/benchmarks.md`):
 /// the roulette's weights 1/q add noise where L3+ is largest.
 pub const ROULETTE_FROM_REFLECTION: u32 = 4;
