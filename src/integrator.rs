@@ -743,7 +743,7 @@ impl<'a> Walk<'a> {
     // ── direct lighting ──────────────────────────────────────────────
 
     /// The light samples and separately gathered directions of `vertex`, filed under its next term.
-    #[inline]
+    #[inline(always)]
     fn direct_lighting(
         &mut self,
         vertex: &Vertex,
