@@ -80,6 +80,10 @@ struct BenchArgs {
     /// Error curves: the last sample count (the counts are 1, 2, 4, … up to it).
     #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     max_spp: u32,
+    /// Error curves: a curve still above relMSE 1e-3 at --max-spp doubles its samples up to this
+    /// many, the peer's too (default: 8 × --max-spp, at most half of --reference-spp).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000_000))]
+    extend_spp: Option<u32>,
     /// Error curves: samples per pixel of the reference (rendered once, cached in the output folder).
     #[arg(long, default_value_t = 4096, value_parser = clap::value_parser!(u32).range(1..=100_000_000))]
     reference_spp: u32,
@@ -659,6 +663,21 @@ fn run_bench(args: &BenchArgs) -> Result<(), Failure> {
             args.max_spp
         )));
     }
+    if let Some(extend) = args.extend_spp
+        && args.reference.is_none()
+        && args.reference_spp < extend
+    {
+        return Err(usage(anyhow::anyhow!(
+            "--reference-spp {} is below --extend-spp {extend}: the reference must converge further than the curves",
+            args.reference_spp
+        )));
+    }
+    let extend_spp = args.extend_spp.unwrap_or_else(|| {
+        args.max_spp
+            .saturating_mul(8)
+            .min(args.reference_spp / 2)
+            .max(args.max_spp)
+    });
     for &size in &args.resolutions {
         Film::check_memory(size, size, settings.terms).map_err(|e| usage(e.into()))?;
     }
@@ -698,6 +717,7 @@ fn run_bench(args: &BenchArgs) -> Result<(), Failure> {
             settings: settings.clone(),
             estimators,
             max_spp: args.max_spp,
+            extend_spp,
             reference_spp: args.reference_spp,
             reference: args.reference.clone(),
         },

@@ -53,6 +53,7 @@ fn tiny_config() -> BenchConfig {
                 None,
             ),
             max_spp: 16,
+            extend_spp: 16,
             reference_spp: 256,
             reference: None,
         },
@@ -201,6 +202,58 @@ fn sample_counts_double_up_to_the_last() {
 }
 
 #[test]
+fn an_extended_curve_doubles_until_the_lowest_threshold_or_the_limit() {
+    use lumiere::bench::error_curve::next_extended_count;
+    assert_eq!(next_extended_count(16, 2e-3, 64), Some(32));
+    assert_eq!(next_extended_count(32, 2e-3, 64), Some(64));
+    assert_eq!(next_extended_count(64, 2e-3, 64), None, "the limit");
+    assert_eq!(next_extended_count(48, 2e-3, 64), None, "96 is past it");
+    assert_eq!(next_extended_count(16, 1e-3, 64), None, "reached");
+    assert_eq!(next_extended_count(u32::MAX / 2 + 1, 1.0, u32::MAX), None);
+
+    // curves that start above 10⁻³ go on past --max-spp: Sobol's reaches
+    // it on the way, the independent numbers' stops at the limit
+    let folder = scratch("extended");
+    let mut config = tiny_config();
+    config.sections = vec![Section::Error];
+    config.error.estimators = Estimator::all_pairs(
+        &[LightSampling::Mis],
+        &[Sampler::Independent, Sampler::Sobol],
+        None,
+    );
+    config.error.max_spp = 2;
+    config.error.extend_spp = 128;
+    config.error.reference_spp = 4096;
+    let report = run(&config, &folder, &Silent).unwrap();
+    let curve = |estimator: &str| -> Vec<(u32, f64)> {
+        report
+            .error_rows
+            .iter()
+            .filter(|r| r.estimator == estimator)
+            .map(|r| (r.spp, r.relmse))
+            .collect()
+    };
+    let (independent, sobol) = (curve("mis/independent"), curve("mis/sobol"));
+    for points in [&independent, &sobol] {
+        let spp: Vec<u32> = points.iter().map(|p| p.0).collect();
+        let doubling: Vec<u32> = (0..spp.len()).map(|k| 1 << k).collect();
+        assert_eq!(spp, doubling, "{points:?}");
+        assert!(
+            points[..points.len() - 1].iter().all(|p| p.1 > 1e-3),
+            "{points:?}"
+        );
+    }
+    let (last_independent, last_sobol) = (independent.last().unwrap(), sobol.last().unwrap());
+    assert_eq!(last_independent.0, 128, "{independent:?}");
+    assert!(last_independent.1 > 1e-3, "{independent:?}");
+    assert!(last_sobol.0 < 128 && last_sobol.1 <= 1e-3, "{sobol:?}");
+    let summary = &report.curves;
+    let sobol_summary = summary.iter().find(|c| c.estimator == "mis/sobol").unwrap();
+    assert!(sobol_summary.seconds_to[1].is_some(), "{summary:?}");
+    std::fs::remove_dir_all(&folder).unwrap();
+}
+
+#[test]
 fn peer_rows_merge_into_the_summary() {
     let text = "renderer,estimator,spp,seconds,rmse,relmse\n\
                 mitsuba,path,1,0.5,0.3,0.1\n\
@@ -346,6 +399,19 @@ fn a_malformed_peer_csv_fails_the_command_with_its_name() {
         .unwrap();
     assert_eq!(bad_section.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad_section.stderr).contains("unknown bench section 'speed'"));
+    // curves extended past their reference would measure the reference's own noise
+    let past_reference = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(["bench", "--only", "error", "--reference-spp", "64"])
+        .args(["--max-spp", "16", "--extend-spp", "128", "-o"])
+        .arg(&folder)
+        .output()
+        .unwrap();
+    assert_eq!(past_reference.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&past_reference.stderr);
+    assert!(
+        stderr.contains("--reference-spp 64 is below --extend-spp 128"),
+        "{stderr}"
+    );
     std::fs::remove_dir_all(&folder).unwrap();
 }
 

@@ -9,6 +9,12 @@
 //! relMSE ≤ τ, interpolated linearly in (log t, log relMSE) between the two
 //! measured points that straddle τ ([`time_to_relmse`]).
 //!
+//! A curve still above the lowest τ at the last sample count goes on
+//! doubling its samples up to `extend_spp` ([`next_extended_count`]), so
+//! that a slow estimator gets a time to 10⁻³, not only a bound; the peer's
+//! script is given the same rule. The limit stays well below the
+//! reference's sample count, whose own error would otherwise be measured.
+//!
 //! The reference is cached in the output folder under a name that hashes
 //! what decides the radiance (scene file, size, terms, lights, BRDF,
 //! bounces) and its sample count, so a change of any of them renders a new
@@ -111,6 +117,9 @@ pub struct ErrorBench {
     pub estimators: Vec<Estimator>,
     /// The last sample count (the counts are 1, 2, 4, … up to it).
     pub max_spp: u32,
+    /// A curve above the lowest threshold at `max_spp` doubles its samples
+    /// until it reaches it or would pass this count (≤ `max_spp`: never).
+    pub extend_spp: u32,
     /// Samples per pixel of a rendered reference.
     pub reference_spp: u32,
     /// A reference EXR to use instead of rendering one.
@@ -125,6 +134,20 @@ pub fn sample_counts(max_spp: u32) -> Vec<u32> {
         .collect();
     counts.push(max_spp.max(1));
     counts
+}
+
+/// The lowest relMSE threshold, the one a curve is extended to reach.
+pub fn lowest_threshold() -> f64 {
+    RELMSE_THRESHOLDS.into_iter().fold(f64::INFINITY, f64::min)
+}
+
+/// The sample count after `done` of a curve past its planned counts:
+/// twice `done` while its relMSE is above the lowest threshold and the
+/// doubled count is within `limit`; `None` once it has reached the
+/// threshold or the limit.
+pub fn next_extended_count(done: u32, relmse: f64, limit: u32) -> Option<u32> {
+    let next = done.checked_mul(2)?;
+    (relmse > lowest_threshold() && next <= limit).then_some(next)
 }
 
 /// The first time a curve of (seconds, relMSE) points, in order of growing
@@ -413,7 +436,9 @@ pub fn measure_curves(
             label += &format!(" ×{}", context.continuations.label());
         }
         let mut film = Film::new(settings.width, settings.height);
-        for &spp in &counts {
+        let mut planned = counts.iter().copied();
+        let mut next = planned.next();
+        while let Some(spp) = next {
             progress.message(&format!("error: {label} at {spp} spp"));
             let stats = render(&context, &mut film, Budget::Samples(spp - done), |_| {});
             done = spp;
@@ -429,6 +454,9 @@ pub fn measure_curves(
                 rmse: error.rmse,
                 relmse: error.relmse,
             });
+            next = planned
+                .next()
+                .or_else(|| next_extended_count(done, error.relmse, bench.extend_spp));
         }
     }
     rows

@@ -6,6 +6,9 @@
 //! `--reference <ref.exr>` and writes `<out>.csv` with the columns of
 //! [`super::csv::ERROR_COLUMNS`]. A file without a camera, which lumiere
 //! frames itself, comes with `--camera`: lumiere's framing camera. A
+//! curve extended past its counts (lumiere's rule, `extend_spp`) comes with
+//! `--until-relmse τ --spp-limit N`: while the last image's relMSE is above
+//! τ, render twice its samples, as long as that is at most N. A
 //! missing interpreter, script or package skips the peer with a message; it
 //! never fails the bench.
 
@@ -19,7 +22,7 @@ use crate::scene::{Projection, Scene, builtin};
 use crate::settings::{BrdfOverride, LightMode, RenderSettings, Term};
 
 use super::csv::{ErrorRow, read_error_csv};
-use super::error_curve::ErrorBench;
+use super::error_curve::{ErrorBench, lowest_threshold};
 use super::{BenchError, Progress};
 
 /// Renderers lumiere can run for comparison.
@@ -193,7 +196,8 @@ pub fn run(
     let csv = folder.join(format!("{}.csv", peer.label()));
     let spp: Vec<String> = counts.iter().map(u32::to_string).collect();
     progress.message(&format!("error: {} at {} spp", peer.label(), spp.join(",")));
-    let output = Command::new("python3")
+    let mut command = Command::new("python3");
+    command
         .arg(&script)
         .arg(&scene_path)
         .arg("--reference")
@@ -205,8 +209,13 @@ pub fn run(
         .args(&overrides)
         .args(&camera)
         .arg("--out")
-        .arg(&csv)
-        .output();
+        .arg(&csv);
+    if bench.extend_spp > counts.last().copied().unwrap_or(0) {
+        command
+            .args(["--until-relmse", &lowest_threshold().to_string()])
+            .args(["--spp-limit", &bench.extend_spp.to_string()]);
+    }
+    let output = command.output();
     let output = match output {
         Ok(output) => output,
         Err(e) => return Ok(PeerRun::Skipped(format!("cannot run python3: {e}"))),

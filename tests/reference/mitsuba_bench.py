@@ -11,7 +11,7 @@ with lumiere's own definitions (src/metrics.rs):
 
     python tests/reference/mitsuba_bench.py SCENE.gltf --reference REF.exr \
         --width W --height H --max-depth 3 --spp 1,2,4,8,... --out OUT.csv \
-        [--variant llvm_ad_rgb] [--threads N] \
+        [--until-relmse 1e-3 --spp-limit 1024] [--variant llvm_ad_rgb] [--threads N] \
         [--brdf lambert|mirror|phong] [--sphere-lights RADIUS] [--point-emitters]
 
 (`--brdf`, `--sphere-lights` and `--point-emitters` are lumiere's `--brdf`,
@@ -25,6 +25,12 @@ render (renderer `mitsuba`, estimator `path-llvm` or `path-scalar`); a short
 table goes to standard output, with the CPU seconds of each render too (all
 threads): on a shared machine the wall time depends on the other load, the
 CPU time much less.
+
+With --until-relmse, a curve whose last image is still above that relMSE
+goes on with twice the samples, then twice again, while the count stays
+within --spp-limit: lumiere's own rule for its curves (`extend_spp` in
+src/bench/error_curve.rs), so that both renderers get a time to 10^-3
+rather than a bound.
 
 Timing: each row's seconds is the wall time of its renders (all passes) up
 to the image as a NumPy array, so the kernels have really run; loading the
@@ -107,6 +113,10 @@ def main(argv=None):
                     help="maximum number of path segments (1 = L0, 2 = L0+L1, 3 = L0+L1+L2)")
     ap.add_argument("--spp", type=parse_spp, required=True, help="comma-separated sample counts, e.g. 1,2,4,8")
     ap.add_argument("--out", required=True, help="CSV to write")
+    ap.add_argument("--until-relmse", type=float, default=None,
+                    help="past the last count, double the samples while relMSE is above this")
+    ap.add_argument("--spp-limit", type=int, default=0,
+                    help="the most samples a doubled count may reach (with --until-relmse)")
     ap.add_argument("--variant", default="llvm_ad_rgb",
                     help="Mitsuba variant (default llvm_ad_rgb; scalar_rgb needs no LLVM)")
     ap.add_argument("--threads", type=int, default=None, help="worker threads (default: all cores)")
@@ -114,7 +124,7 @@ def main(argv=None):
                     help="most samples per render call (default 256 for llvm, unlimited for scalar)")
     ap.add_argument("--seed", type=int, default=1, help="seed of the first timed pass (the warm-up uses 0)")
     ap.add_argument("--rr-depth", type=int, default=LUMIERE_RR_DEPTH,
-                    help="Russian roulette after this many interactions (default 3, as lumiere)")
+                    help="Russian roulette after this many interactions (default 4, as lumiere)")
     mr.add_override_arguments(ap)
     args = ap.parse_args(argv)
 
@@ -175,12 +185,20 @@ def main(argv=None):
 
     estimator = "path-" + ("llvm" if llvm else args.variant.split("_")[0])
     rows = []
-    for spp in args.spp:
+
+    def measure(spp):
         t0, c0 = time.perf_counter(), time.process_time()
         img = render(spp)
         seconds, cpu = time.perf_counter() - t0, time.process_time() - c0
         rmse, relmse = image_error(img, reference)
         rows.append(("mitsuba", estimator, spp, seconds, rmse, relmse, cpu))
+
+    for spp in args.spp:
+        measure(spp)
+    if args.until_relmse is not None:
+        # the same rule as lumiere's curves (next_extended_count)
+        while rows[-1][5] > args.until_relmse and 2 * rows[-1][2] <= args.spp_limit:
+            measure(2 * rows[-1][2])
 
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
     with open(args.out, "w", newline="") as f:
