@@ -6,6 +6,16 @@
 //! estimators and `docs/architecture.md` for how a sample flows through the
 //! modules below.
 //!
+//! | folder | what it holds |
+//! |---|---|
+//! | [`scene`] | the scene as plain data, loaded from glTF or built in |
+//! | [`geometry`] | rays, robust offsets, the camera's rays, the BVH |
+//! | [`transport`] | the estimators of the terms: integrators, BRDFs, lights, sampling |
+//! | [`render`] | settings, the film, the render loop, the viewer's worker, export |
+//! | [`analysis`] | error metrics, convergence, noise views, the probe, the path view |
+//! | [`tools`] | `lumiere bench`, `stress` and `strip` |
+//! | `app` | the viewer (feature `gui`) |
+//!
 //! Rendering one term of a scene whose answer is known — the furnace, a
 //! closed sphere emitting L_e = 2 with albedo ½, where L1 = ρ·L_e = 1:
 //!
@@ -22,39 +32,17 @@
 //! assert!((mean - 1.0).abs() < 0.05, "L1 = {mean}");
 //! ```
 
-pub mod accel;
-pub mod adaptive;
+pub mod analysis;
 #[cfg(feature = "gui")]
 pub mod app;
-pub mod bench;
-pub mod brdf;
-pub mod camera;
-pub mod capture;
-pub mod color;
-pub mod convergence;
-pub mod error;
-pub mod export;
-pub mod film;
 pub mod geometry;
-pub mod integrator;
-pub mod lights;
-pub mod metrics;
-pub mod noise;
-pub mod path_view;
-pub mod probe;
-pub mod progressive;
 pub mod render;
-pub mod sampling;
 pub mod scene;
-pub mod settings;
-pub mod shading;
-pub mod sidecar;
-pub mod splitting;
-pub mod stress;
-pub mod strip;
+pub mod tools;
+pub mod transport;
 
-pub use error::SceneError;
-pub use film::Film;
-pub use integrator::RenderContext;
+pub use render::film::Film;
+pub use render::settings::{BrdfOverride, LightMode, RenderSettings, Term, TermSet};
 pub use scene::Scene;
-pub use settings::{BrdfOverride, LightMode, RenderSettings, Term, TermSet};
+pub use scene::error::SceneError;
+pub use transport::fast::RenderContext;

@@ -12,24 +12,26 @@ use anyhow::Context;
 use clap::{Args, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use lumiere::bench::error_curve::{ErrorBench, Estimator};
-use lumiere::bench::memory::CountingAllocator;
-use lumiere::bench::peer::Peer;
-use lumiere::bench::run::{BenchConfig, run as run_bench_sections};
-use lumiere::bench::scaling::ScalingBench;
-use lumiere::bench::{Progress, Section};
-use lumiere::export::{ImageFormat, save_image};
-use lumiere::noise::DisplayMode;
-use lumiere::path_view::PathSample;
-use lumiere::render::{Budget, RenderStats, render};
-use lumiere::scene::Camera;
-use lumiere::scene::builtin;
-use lumiere::settings::{
+use lumiere::analysis::noise::DisplayMode;
+use lumiere::analysis::path_view::PathSample;
+use lumiere::render::export::{ImageFormat, save_image};
+use lumiere::render::settings::{
     Adaptive, DisplaySettings, IndirectSampling, LightSampling, LightSelection,
     MAX_SAMPLES_PER_VERTEX, MisHeuristic, Sampler, Tonemap,
 };
-use lumiere::sidecar::Sidecar;
-use lumiere::strip::{RowSweep, SampleCounts, StripImage, StripLayout, StripRow, render_strip};
+use lumiere::render::sidecar::Sidecar;
+use lumiere::render::{Budget, RenderStats, render};
+use lumiere::scene::Camera;
+use lumiere::scene::builtin;
+use lumiere::tools::bench::error_curve::{ErrorBench, Estimator};
+use lumiere::tools::bench::memory::CountingAllocator;
+use lumiere::tools::bench::peer::Peer;
+use lumiere::tools::bench::run::{BenchConfig, run as run_bench_sections};
+use lumiere::tools::bench::scaling::ScalingBench;
+use lumiere::tools::bench::{Progress, Section};
+use lumiere::tools::strip::{
+    RowSweep, SampleCounts, StripImage, StripLayout, StripRow, render_strip,
+};
 use lumiere::{BrdfOverride, Film, LightMode, RenderContext, RenderSettings, TermSet};
 
 /// Counts heap bytes for `lumiere bench`'s memory figures (two relaxed atomics per allocation).
@@ -224,7 +226,7 @@ struct StressArgs {
     quick: bool,
     /// Run only these cases (comma-separated; default: all).
     #[arg(long, value_delimiter = ',')]
-    only: Vec<lumiere::stress::Case>,
+    only: Vec<lumiere::tools::stress::Case>,
 }
 
 #[derive(Args)]
@@ -537,7 +539,7 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
 }
 
 fn run_stress(args: &StressArgs) -> Result<(), Failure> {
-    use lumiere::stress::{Case, Effort, table};
+    use lumiere::tools::stress::{Case, Effort, table};
     let effort = if args.quick {
         Effort::Quick
     } else {
@@ -755,7 +757,7 @@ fn run_bench(args: &BenchArgs) -> Result<(), Failure> {
     let report = pool.install(|| run_bench_sections(&config, &args.output, &spinner));
     spinner.0.finish_and_clear();
     let report = report.map_err(|e| match e {
-        lumiere::bench::BenchError::Invalid(_) => usage(e.into()),
+        lumiere::tools::bench::BenchError::Invalid(_) => usage(e.into()),
         e => runtime(e.into()),
     })?;
     print!("{}", report.summary());
@@ -773,7 +775,7 @@ fn run_view(args: ViewArgs, restore: bool) -> Result<(), Failure> {
         || args.compare_indirect_sampling.is_some()
         || args.compare_sampler.is_some();
     let compare = comparing.then(|| {
-        let mut estimator = lumiere::convergence::EstimatorKey::of(&settings);
+        let mut estimator = lumiere::analysis::convergence::EstimatorKey::of(&settings);
         estimator.light_sampling = args
             .compare_light_sampling
             .unwrap_or(estimator.light_sampling);
@@ -850,7 +852,7 @@ fn update_bar(bar: &ProgressBar, stats: &RenderStats, budget: Budget) {
 
 /// What `--indirect-samples auto` chose: one count, or the range of the
 /// regions' counts and their mean over the image.
-fn describe_continuations(continuations: &lumiere::splitting::Continuations) -> String {
+fn describe_continuations(continuations: &lumiere::transport::splitting::Continuations) -> String {
     match continuations.map {
         None => format!(
             "indirect samples: {} per first hit (auto)",

@@ -1,11 +1,11 @@
 //! The BVH agrees with brute force, and closed meshes do not leak.
 
 use glam::Vec3;
-use lumiere::accel::{Accel, Hit, Sphere};
 use lumiere::geometry::Ray;
-use lumiere::sampling::{SampleStream, uniform_sphere};
+use lumiere::geometry::accel::{Accel, Hit, Sphere};
 use lumiere::scene::builtin::uv_sphere;
 use lumiere::scene::{Material, Scene};
+use lumiere::transport::sampling::{SampleStream, uniform_sphere};
 
 fn random_point(stream: &SampleStream, d: u32, extent: f32) -> Vec3 {
     (Vec3::new(

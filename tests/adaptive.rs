@@ -4,11 +4,11 @@
 
 mod common;
 
-use lumiere::metrics::image_error;
-use lumiere::probe::{MAX_PROBE_SAMPLES, probe_pixel};
+use lumiere::analysis::metrics::image_error;
+use lumiere::analysis::probe::{MAX_PROBE_SAMPLES, probe_pixel};
+use lumiere::render::settings::Adaptive;
 use lumiere::render::{Budget, RenderStats, render};
 use lumiere::scene::builtin;
-use lumiere::settings::Adaptive;
 use lumiere::{Film, RenderContext, RenderSettings, Term, TermSet};
 
 const WIDTH: u32 = 32;
@@ -194,7 +194,7 @@ fn adaptive_sampling_lowers_relmse_for_the_same_samples() {
     let mean = |image: &[glam::Vec3]| {
         image
             .iter()
-            .map(|p| lumiere::color::luminance(*p) as f64)
+            .map(|p| lumiere::render::color::luminance(*p) as f64)
             .sum::<f64>()
             / image.len() as f64
     };
@@ -214,7 +214,7 @@ fn absurd_adaptive_settings_are_refused() {
 
 #[test]
 fn the_sample_count_view_shows_how_often_each_pixel_was_traced() {
-    use lumiere::noise::{DisplayMode, NoiseSource, NoiseView, Scale, noise_values};
+    use lumiere::analysis::noise::{DisplayMode, NoiseSource, NoiseView, Scale, noise_values};
     let (_, film, _) = render_cornell(&settings(adaptive(0.02, 8)), 32);
     let view = |source| NoiseView {
         mode: DisplayMode::SampleCount,

@@ -8,8 +8,8 @@ use common::{add_floor, estimate, polygon_irradiance};
 
 use glam::Vec3;
 use lumiere::geometry::Ray;
-use lumiere::integrator::RenderContext;
 use lumiere::scene::{Material, Scene};
+use lumiere::transport::fast::RenderContext;
 use lumiere::{LightMode, RenderSettings, Term, TermSet};
 
 const ALBEDO: f32 = 0.5;
@@ -202,8 +202,8 @@ fn directional_light_gives_e_cos_theta() {
 #[test]
 fn a_textured_emitter_is_read_where_the_light_is_sampled() {
     use glam::Vec2;
+    use lumiere::render::settings::LightSampling;
     use lumiere::scene::{Texture, TextureRef};
-    use lumiere::settings::LightSampling;
 
     let center = Vec3::new(0.0, 0.0, HEIGHT);
     let mut scene = quad_over_plane(Material::lambert("floor", Vec3::splat(ALBEDO)), center);

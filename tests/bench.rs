@@ -7,17 +7,17 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Arc;
 
-use lumiere::bench::csv::{ErrorRow, parse_error_csv};
-use lumiere::bench::error_curve::{
-    ErrorBench, Estimator, TimeRatio, reference_file_name, sample_counts, summarize, time_to_relmse,
-};
-use lumiere::bench::run::{BenchConfig, BenchReport, run};
-use lumiere::bench::scaling::{ScalingBench, procedural_scene, write_gltf};
-use lumiere::bench::throughput::{RayKind, record_segments, replay_matches};
-use lumiere::bench::{Section, Silent};
+use lumiere::render::settings::{LightSampling, Sampler};
 use lumiere::render::{Budget, render};
 use lumiere::scene::{builtin, gltf};
-use lumiere::settings::{LightSampling, Sampler};
+use lumiere::tools::bench::csv::{ErrorRow, parse_error_csv};
+use lumiere::tools::bench::error_curve::{
+    ErrorBench, Estimator, TimeRatio, reference_file_name, sample_counts, summarize, time_to_relmse,
+};
+use lumiere::tools::bench::run::{BenchConfig, BenchReport, run};
+use lumiere::tools::bench::scaling::{ScalingBench, procedural_scene, write_gltf};
+use lumiere::tools::bench::throughput::{RayKind, record_segments, replay_matches};
+use lumiere::tools::bench::{Section, Silent};
 use lumiere::{Film, RenderContext, RenderSettings, Term, TermSet};
 
 fn scratch(name: &str) -> PathBuf {
@@ -203,7 +203,7 @@ fn sample_counts_double_up_to_the_last() {
 
 #[test]
 fn an_extended_curve_doubles_until_the_lowest_threshold_or_the_limit() {
-    use lumiere::bench::error_curve::next_extended_count;
+    use lumiere::tools::bench::error_curve::next_extended_count;
     assert_eq!(next_extended_count(16, 2e-3, 64), Some(32));
     assert_eq!(next_extended_count(32, 2e-3, 64), Some(64));
     assert_eq!(next_extended_count(64, 2e-3, 64), None, "the limit");
@@ -507,7 +507,7 @@ fn the_replay_traces_the_renderers_rays_and_finds_the_same_hits() {
 
 #[test]
 fn with_adaptive_sampling_every_curve_is_measured_uniform_and_adaptive() {
-    use lumiere::settings::Adaptive;
+    use lumiere::render::settings::Adaptive;
     let adaptive = Adaptive {
         threshold: 0.01,
         min_samples: 128,
@@ -539,8 +539,8 @@ fn with_adaptive_sampling_every_curve_is_measured_uniform_and_adaptive() {
 /// `--lights point` pass to it; the estimator's settings change nothing.
 #[test]
 fn the_peer_renders_lumieres_overrides() {
-    use lumiere::bench::peer::scene_overrides;
-    use lumiere::settings::{BrdfOverride, LightMode};
+    use lumiere::render::settings::{BrdfOverride, LightMode};
+    use lumiere::tools::bench::peer::scene_overrides;
     let scene = builtin::cornell();
     let mut settings = RenderSettings {
         sampler: Sampler::Sobol,
@@ -599,7 +599,7 @@ fn the_peer_renders_lumieres_overrides() {
 /// samples with one where there is nothing to split.
 #[test]
 fn the_reference_spends_its_budget_on_the_least_noisy_estimator() {
-    use lumiere::bench::error_curve::reference_plan;
+    use lumiere::tools::bench::error_curve::reference_plan;
     let scene = Arc::new(builtin::cornell());
     let settings = RenderSettings {
         width: 32,
@@ -634,7 +634,7 @@ fn a_scene_without_light_measures_no_curve_and_says_why() {
     config.error.scene = "tests/data/gltf/cameras.gltf".into();
     config.error.max_spp = 4;
     config.error.reference_spp = 16;
-    config.peer = Some(lumiere::bench::peer::Peer::Mitsuba);
+    config.peer = Some(lumiere::tools::bench::peer::Peer::Mitsuba);
     let report = run(&config, &folder, &Silent).unwrap();
     assert!(report.curves.is_empty(), "{:?}", report.curves);
     assert_eq!(report.notes.len(), 1, "{:?}", report.notes);
@@ -651,8 +651,8 @@ fn a_scene_without_light_measures_no_curve_and_says_why() {
 
 #[test]
 fn a_file_without_a_camera_gives_the_peer_lumieres_framing_camera() {
-    use lumiere::bench::peer::camera_arguments;
     use lumiere::scene::Projection;
+    use lumiere::tools::bench::peer::camera_arguments;
     // the Cornell box has its camera: the peer reads it from the file
     assert_eq!(camera_arguments(&builtin::cornell()), Ok(vec![]));
 

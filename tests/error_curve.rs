@@ -7,12 +7,12 @@ mod common;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
-use lumiere::capture::{ReferenceCapture, ReferenceJob, ReferenceKey, reference_seed};
-use lumiere::convergence::log_log_slope;
-use lumiere::metrics::image_error;
+use lumiere::analysis::capture::{ReferenceCapture, ReferenceJob, ReferenceKey, reference_seed};
+use lumiere::analysis::convergence::log_log_slope;
+use lumiere::analysis::metrics::image_error;
+use lumiere::render::settings::{LightSampling, Sampler};
 use lumiere::render::{Budget, render};
 use lumiere::scene::builtin;
-use lumiere::settings::{LightSampling, Sampler};
 use lumiere::{Film, RenderContext, Term, TermSet};
 
 use common::{render_film, small};

@@ -1007,9 +1007,9 @@ fn the_textured_cornell_box_reads_its_checker_in_linear_values() {
 #[test]
 fn the_glossy_cornell_box_maps_its_materials_onto_phong() {
     // the file the Mitsuba Phong check renders (tests/reference/README.md)
-    use lumiere::brdf::Brdf;
-    use lumiere::settings::RenderSettings;
-    use lumiere::shading::resolve_brdf;
+    use lumiere::render::settings::RenderSettings;
+    use lumiere::transport::brdf::Brdf;
+    use lumiere::transport::surface::resolve_brdf;
     let scene = load(Path::new("tests/data/cornell-glossy.gltf")).unwrap();
     let settings = RenderSettings::default();
     let brdf = |name: &str| {
@@ -1055,9 +1055,9 @@ fn the_glossy_cornell_box_maps_its_materials_onto_phong() {
 fn a_primitive_reads_each_texture_at_its_own_uv_set() {
     // the file the Mitsuba check of two uv sets renders (tests/reference/README.md):
     // the back wall glows with the checker at TEXCOORD_0 and reflects it at TEXCOORD_1
-    use lumiere::brdf::Brdf;
-    use lumiere::settings::RenderSettings;
-    use lumiere::shading::SurfacePoint;
+    use lumiere::render::settings::RenderSettings;
+    use lumiere::transport::brdf::Brdf;
+    use lumiere::transport::surface::SurfacePoint;
     let scene = load(Path::new("tests/data/cornell-two-uv-sets.gltf")).unwrap();
     let wall = scene
         .objects

@@ -1,13 +1,13 @@
 //! The path view: camera projection, and the recorded rays of a probed sample.
 
 use glam::{Affine3A, Vec2, Vec3};
-use lumiere::camera::CameraRays;
-use lumiere::color::luminance;
-use lumiere::integrator::SegmentKind;
-use lumiere::path_view::{RayRole, path_lines};
-use lumiere::probe::{MAX_PROBE_SAMPLES, probe_pixel};
+use lumiere::analysis::path_view::{RayRole, path_lines};
+use lumiere::analysis::probe::{MAX_PROBE_SAMPLES, probe_pixel};
+use lumiere::geometry::camera::CameraRays;
+use lumiere::render::color::luminance;
 use lumiere::render::{PassBuffer, render_pass};
 use lumiere::scene::{Camera, Projection, builtin};
+use lumiere::transport::fast::SegmentKind;
 use lumiere::{Film, RenderContext, RenderSettings, Term, TermSet};
 
 fn cameras() -> Vec<(&'static str, CameraRays)> {

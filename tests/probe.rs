@@ -1,7 +1,7 @@
 //! The pixel probe traces again exactly the samples the film summed: same
 //! streams, same pass indices, even when a term skipped passes.
 
-use lumiere::probe::{MAX_PROBE_SAMPLES, probe_pixel};
+use lumiere::analysis::probe::{MAX_PROBE_SAMPLES, probe_pixel};
 use lumiere::render::{PassBuffer, render_pass};
 use lumiere::scene::builtin;
 use lumiere::{Film, RenderContext, RenderSettings, Term, TermSet};

@@ -4,7 +4,7 @@
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use lumiere::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
+use lumiere::render::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
 use lumiere::scene::builtin;
 use lumiere::{BrdfOverride, RenderSettings, Term, TermSet};
 

@@ -115,7 +115,7 @@ fn cli_renders_png_and_exr_and_prints_a_summary() {
         "stderr: {}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let (w, h, pixels) = lumiere::export::load_exr(&exr).unwrap();
+    let (w, h, pixels) = lumiere::render::export::load_exr(&exr).unwrap();
     assert_eq!((w, h), (16, 16));
     assert!(
         pixels
@@ -227,7 +227,7 @@ fn corpus_files_render_or_fail_cleanly() {
 /// renders with its scene, camera, settings and sample count.
 #[test]
 fn cli_render_reproduces_a_sidecar() {
-    use lumiere::sidecar::Sidecar;
+    use lumiere::render::sidecar::Sidecar;
 
     let scene = builtin::cornell();
     let mut camera = scene.default_camera();
@@ -270,7 +270,7 @@ fn cli_render_reproduces_a_sidecar() {
         |_| {},
     );
     let expected = film.radiance(settings.terms);
-    let (_, _, pixels) = lumiere::export::load_exr(&exr).unwrap();
+    let (_, _, pixels) = lumiere::render::export::load_exr(&exr).unwrap();
     assert_eq!(pixels, expected, "the sidecar's render differs");
 
     std::fs::write(&json, b"{\"scene\": 3}").unwrap();

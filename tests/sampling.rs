@@ -1,6 +1,6 @@
 //! The warps against their densities, and the samplers against their promises.
 //!
-//! **Warps.** Each warp of `lumiere::sampling` is checked by a χ² goodness-of-fit
+//! **Warps.** Each warp of `lumiere::transport::sampling` is checked by a χ² goodness-of-fit
 //! test: N samples are binned, and the count of each bin is compared with N
 //! times the bin's probability, the integral of the warp's stated pdf over the
 //! bin (adaptive Simpson, not the warp's own inverse). Bins expecting fewer
@@ -20,14 +20,14 @@ mod common;
 use std::f64::consts::PI;
 
 use glam::{Vec2, Vec3};
-use lumiere::metrics::image_error;
-use lumiere::sampling::{
+use lumiere::analysis::metrics::image_error;
+use lumiere::render::settings::Sampler;
+use lumiere::scene::builtin;
+use lumiere::transport::sampling::{
     AliasTable, SampleStream, UNIFORM_HEMISPHERE_PDF, UNIFORM_SPHERE_PDF, concentric_disk,
     cosine_hemisphere, cosine_hemisphere_pdf, phong_lobe, phong_lobe_pdf, uniform_cone,
     uniform_cone_pdf, uniform_hemisphere, uniform_sphere, uniform_triangle,
 };
-use lumiere::scene::builtin;
-use lumiere::settings::Sampler;
 use lumiere::{RenderSettings, Term, TermSet};
 
 use common::{render_film, small};
@@ -689,7 +689,7 @@ fn sobol_points_fill_every_elementary_interval_once() {
                         (m + 1) * n
                     );
                 }
-                use lumiere::sampling::dim;
+                use lumiere::transport::sampling::dim;
                 let pairs = [
                     dim::PIXEL,
                     dim::vertex_base(0) + dim::LIGHT_POSITION,

@@ -3,10 +3,10 @@
 mod common;
 
 use common::small;
-use lumiere::integrator::RayCounts;
+use lumiere::render::settings::LightSampling;
 use lumiere::render::{Budget, render};
 use lumiere::scene::builtin;
-use lumiere::settings::LightSampling;
+use lumiere::transport::fast::RayCounts;
 use lumiere::{Film, LightMode, RenderContext, RenderSettings, Term, TermSet};
 
 fn rays_of(settings: &RenderSettings, spp: u32) -> RayCounts {

@@ -9,12 +9,12 @@ use std::sync::Arc;
 
 use common::{add_floor, small};
 use glam::Vec3;
-use lumiere::integrator::RenderContext;
+use lumiere::render::settings::Sampler;
 use lumiere::render::{Budget, render};
 use lumiere::scene::builtin;
 use lumiere::scene::{Camera, Material, Projection, Scene};
-use lumiere::settings::Sampler;
-use lumiere::splitting::{SplitChoice, choose_indirect_samples};
+use lumiere::transport::fast::RenderContext;
+use lumiere::transport::splitting::{SplitChoice, choose_indirect_samples};
 use lumiere::{Film, RenderSettings, TermSet};
 
 fn auto(settings: RenderSettings) -> RenderSettings {
@@ -93,7 +93,7 @@ fn continuations_that_bring_nothing_are_not_split() {
         projection: Projection::Perspective { yfov: 1.0 },
     });
     let settings = RenderSettings {
-        light_sampling: lumiere::settings::LightSampling::Area,
+        light_sampling: lumiere::render::settings::LightSampling::Area,
         ..small(32, 32, TermSet::COURSE)
     };
     let c = choice(scene, settings);
@@ -202,7 +202,7 @@ fn the_cornell_box_splits_its_dark_regions_more() {
         "ceiling ×{ceiling}, floor ×{floor}: {map:?}"
     );
     let (lo, hi) = choice.continuations().range();
-    assert!(lo < hi && hi <= lumiere::splitting::MAX_AUTO_INDIRECT_SAMPLES);
+    assert!(lo < hi && hi <= lumiere::transport::splitting::MAX_AUTO_INDIRECT_SAMPLES);
 }
 
 /// Splitting region by region changes the noise, not the mean: with a
@@ -211,8 +211,8 @@ fn the_cornell_box_splits_its_dark_regions_more() {
 /// less noisy than with one.
 #[test]
 fn a_map_of_counts_keeps_the_mean_and_cuts_the_noise_where_it_splits() {
-    use lumiere::settings::Term;
-    use lumiere::splitting::{Continuations, SplitMap};
+    use lumiere::render::settings::Term;
+    use lumiere::transport::splitting::{Continuations, SplitMap};
     let settings = small(32, 24, TermSet::COURSE);
     let scene = Arc::new(builtin::cornell());
     let render_with = |continuations: Continuations| {

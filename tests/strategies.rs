@@ -10,11 +10,11 @@ use std::sync::Arc;
 use common::{add_floor, assert_agrees, estimate, mean_and_error, polygon_irradiance, small};
 use glam::{DVec3, Vec2, Vec3};
 use lumiere::geometry::Ray;
-use lumiere::integrator::{PathLog, RayCounts, RenderContext, SegmentKind};
-use lumiere::sampling::{SampleStream, spherical_triangle, spherical_triangle_area};
+use lumiere::render::settings::{IndirectSampling, LightSampling, LightSelection, MisHeuristic};
 use lumiere::scene::builtin::{self, furnace, point_in_sphere};
 use lumiere::scene::{Material, PunctualKind, PunctualLight, Scene};
-use lumiere::settings::{IndirectSampling, LightSampling, LightSelection, MisHeuristic};
+use lumiere::transport::fast::{PathLog, RayCounts, RenderContext, SegmentKind};
+use lumiere::transport::sampling::{SampleStream, spherical_triangle, spherical_triangle_area};
 use lumiere::{Film, LightMode, RenderSettings, Term, TermSet};
 
 const ALBEDO: f32 = 0.5;
@@ -361,8 +361,8 @@ fn sphere_light_strategies_match_the_closed_form() {
 /// selection, and sphere lights.
 #[test]
 fn light_pdf_queries_match_the_sampled_densities() {
-    use lumiere::accel::Hit;
-    use lumiere::shading::SurfacePoint;
+    use lumiere::geometry::accel::Hit;
+    use lumiere::transport::surface::SurfacePoint;
     let mut scene = plane_under_lights(&[
         (Vec3::new(0.0, 0.0, 1.0), 8.0),
         (Vec3::new(1.0, 0.5, 0.2), 0.5),
@@ -451,7 +451,7 @@ fn block_means(film: &Film, term: Term, block: u32) -> Vec<(f64, f64)> {
             for y in by * block..(by + 1) * block {
                 for x in bx * block..(bx + 1) * block {
                     let i = (y * w + x) as usize;
-                    sum += lumiere::color::luminance(buffer.mean(i).as_vec3()) as f64;
+                    sum += lumiere::render::color::luminance(buffer.mean(i).as_vec3()) as f64;
                     variance += buffer.standard_error(i).powi(2);
                 }
             }

@@ -2,7 +2,7 @@
 //! negative sample reaches the film, no ray leaks out of a closed scene, and
 //! every known energy comes back within the noise (`src/stress.rs`).
 
-use lumiere::stress::{Case, Effort, table};
+use lumiere::tools::stress::{Case, Effort, table};
 
 #[test]
 fn every_stress_case_passes_without_invalid_samples_or_leaks() {
@@ -28,7 +28,7 @@ fn every_stress_case_passes_without_invalid_samples_or_leaks() {
 
 #[test]
 fn the_suite_notices_what_it_checks() {
-    use lumiere::stress::term_mean;
+    use lumiere::tools::stress::term_mean;
     // a term's mean over a film that holds nothing is zero, not NaN
     let film = lumiere::Film::new(2, 2);
     let mean = term_mean(&film, lumiere::Term::L1, |_| true);

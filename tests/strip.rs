@@ -8,11 +8,11 @@ use std::process::{Command, Output};
 
 use glam::Vec3;
 use image::RgbImage;
-use lumiere::color::srgb_to_linear;
-use lumiere::export::to_srgb8;
-use lumiere::metrics::image_error;
+use lumiere::analysis::metrics::image_error;
+use lumiere::render::color::srgb_to_linear;
+use lumiere::render::export::to_srgb8;
 use lumiere::scene::builtin;
-use lumiere::strip::StripLayout;
+use lumiere::tools::strip::StripLayout;
 use lumiere::{Term, TermSet};
 
 fn lumiere() -> Command {

@@ -8,12 +8,12 @@ use std::time::{Duration, Instant};
 use eframe::egui;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
+use lumiere::analysis::metrics::ReferenceImage;
+use lumiere::analysis::noise::DisplayMode;
+use lumiere::analysis::path_view::RayRole;
 use lumiere::app::probe_view::PROBE_WINDOW_ID;
 use lumiere::app::{LumiereApp, ViewOptions};
-use lumiere::metrics::ReferenceImage;
-use lumiere::noise::DisplayMode;
-use lumiere::path_view::RayRole;
-use lumiere::progressive::Snapshot;
+use lumiere::render::progressive::Snapshot;
 use lumiere::{BrdfOverride, LightMode, RenderSettings, Term};
 
 fn harness() -> Harness<'static, LumiereApp> {
@@ -303,11 +303,13 @@ fn mid_range_pixel(app: &LumiereApp) -> (u32, u32) {
     ((i % 64) as u32, (i / 64) as u32)
 }
 
-/// The false colour `crate::noise` chose for film pixel (`x`, `y`), as sRGB bytes.
+/// The false colour `crate::analysis::noise` chose for film pixel (`x`, `y`), as sRGB bytes.
 fn expected_colour(app: &LumiereApp, x: u32, y: u32) -> [u8; 3] {
     let image = app.noise_image().expect("a noise view is shown");
     let linear = image.rgba[(y * 64 + x) as usize];
-    std::array::from_fn(|c| (lumiere::color::linear_to_srgb(linear[c]) * 255.0).round() as u8)
+    std::array::from_fn(|c| {
+        (lumiere::render::color::linear_to_srgb(linear[c]) * 255.0).round() as u8
+    })
 }
 
 fn close_colours(a: [u8; 3], b: [u8; 3]) -> bool {
@@ -320,7 +322,7 @@ fn display_modes_recolour_the_image_and_show_their_legend() {
     harness.state_mut().state.stop_at_spp = Some(8);
     // exposure and tonemap apply to the image only, never to false colour
     harness.state_mut().state.display.exposure = 1.5;
-    harness.state_mut().state.display.tonemap = lumiere::settings::Tonemap::Reinhard;
+    harness.state_mut().state.display.tonemap = lumiere::render::settings::Tonemap::Reinhard;
     wait_for(&mut harness, "8 spp", |s| {
         s.idle && s.samples_per_pixel() >= 8
     });
@@ -421,7 +423,7 @@ fn the_difference_view_needs_a_reference_and_is_signed() {
     assert_eq!(image.range.0, -image.range.1, "a symmetric range");
     let film = app.snapshot();
     for (value, pixel) in image.values.iter().zip(&film.radiance) {
-        let y = lumiere::color::luminance(glam::Vec3::from_slice(&pixel[..3]));
+        let y = lumiere::render::color::luminance(glam::Vec3::from_slice(&pixel[..3]));
         assert!((value - (y - 0.1)).abs() < 1e-4);
     }
     assert!(image.values.iter().any(|&v| v < 0.0) && image.values.iter().any(|&v| v > 0.0));
@@ -589,7 +591,7 @@ fn path_view_draws_the_sample_rays(harness: &mut Harness<'static, LumiereApp>) {
 
 #[test]
 fn the_adaptive_checkbox_stops_converged_pixels_and_unticked_samples_all() {
-    use lumiere::settings::Adaptive;
+    use lumiere::render::settings::Adaptive;
     let mut harness = harness();
     let before = wait_for(&mut harness, "a pass", |s| s.samples_per_pixel() >= 1);
     harness.get_by_label("adaptive").click();

@@ -7,9 +7,9 @@ use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
+use lumiere::analysis::convergence::EstimatorKey;
 use lumiere::app::{LumiereApp, ViewOptions};
-use lumiere::convergence::EstimatorKey;
-use lumiere::settings::LightSampling;
+use lumiere::render::settings::LightSampling;
 use lumiere::{RenderSettings, Term};
 
 fn harness(width: u32, height: u32) -> Harness<'static, LumiereApp> {

@@ -8,8 +8,8 @@
 
 use std::time::{Duration, Instant};
 
-use crate::progressive::Snapshot;
-use crate::settings::BrdfOverride;
+use crate::render::progressive::Snapshot;
+use crate::render::settings::BrdfOverride;
 
 /// Toggles measured per run.
 const TOGGLES: usize = 12;

@@ -1,6 +1,6 @@
 //! The convergence plot: error against samples per pixel and against
 //! seconds, on log-log axes, one curve per estimator tried (see
-//! `crate::convergence`). egui_plot has no log axes: the plot holds log10
+//! `crate::analysis::convergence`). egui_plot has no log axes: the plot holds log10
 //! values and the ticks are labelled 10^k. A dashed line of the slope an
 //! unbiased estimator must follow (-1/2 for RMSE, -1 for relMSE) goes through
 //! the first point of the current estimator's curve.
@@ -12,7 +12,7 @@ use egui_plot::{GridInput, GridMark, Legend, Line, LineStyle, Plot, PlotPoints, 
 
 use super::LumiereApp;
 use super::reference::reference_matches_view;
-use crate::convergence::{Curve, ErrorPoint, EstimatorKey};
+use crate::analysis::convergence::{Curve, ErrorPoint, EstimatorKey};
 
 /// The convergence window, while `show_plot` is on.
 pub fn plot_window(app: &mut LumiereApp, ctx: &egui::Context) {

@@ -6,7 +6,7 @@
 //! fragment shader (`blit.wgsl`) reads the texel under it (nearest neighbour),
 //! applies 2^EV, the tonemap and the sRGB curve. The image never goes through
 //! egui's texture manager. A noise view (false colour, already mapped to
-//! linear RGB by `crate::noise`) goes through the same texture; the shader
+//! linear RGB by `crate::analysis::noise`) goes through the same texture; the shader
 //! then skips exposure and tonemap.
 
 use std::num::NonZeroU64;
@@ -15,9 +15,9 @@ use std::sync::Arc;
 use eframe::egui;
 use eframe::egui_wgpu::{self, CallbackResources, CallbackTrait, ScreenDescriptor, wgpu};
 
-use crate::noise::FalseColour;
-use crate::progressive::Snapshot;
-use crate::settings::{DisplaySettings, Tonemap};
+use crate::analysis::noise::FalseColour;
+use crate::render::progressive::Snapshot;
+use crate::render::settings::{DisplaySettings, Tonemap};
 
 /// What the texture shows: the worker's radiance or a noise view of the film.
 #[derive(Clone)]

@@ -7,11 +7,11 @@ use std::sync::{Arc, Mutex};
 use eframe::egui;
 use glam::Vec3;
 
-use crate::export::save_image;
-use crate::film::Film;
-use crate::progressive::Snapshot;
-use crate::settings::{Term, TermSet};
-use crate::sidecar::Sidecar;
+use crate::render::export::save_image;
+use crate::render::film::Film;
+use crate::render::progressive::Snapshot;
+use crate::render::settings::{Term, TermSet};
+use crate::render::sidecar::Sidecar;
 
 /// One screenshot to write, off the UI thread.
 pub struct ScreenshotJob {

@@ -10,8 +10,8 @@ use glam::{Affine3A, Quat, Vec2, Vec3};
 
 use super::LumiereApp;
 use super::probe_view::ImageMapping;
-use crate::accel::{Accel, Hit};
-use crate::camera::CameraRays;
+use crate::geometry::accel::{Accel, Hit};
+use crate::geometry::camera::CameraRays;
 use crate::scene::{BrdfModel, Camera, Material, Scene};
 
 /// Radians per point of mouse drag.

@@ -22,12 +22,12 @@ use std::sync::{Arc, Mutex};
 use eframe::egui;
 use serde::{Deserialize, Serialize};
 
-use crate::convergence::EstimatorKey;
-use crate::metrics::ReferenceImage;
-use crate::noise::{DisplayMode, NoiseView};
-use crate::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
+use crate::analysis::convergence::EstimatorKey;
+use crate::analysis::metrics::ReferenceImage;
+use crate::analysis::noise::{DisplayMode, NoiseView};
+use crate::render::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
+use crate::render::settings::{DisplaySettings, RenderSettings};
 use crate::scene::{Camera, Scene, builtin};
-use crate::settings::{DisplaySettings, RenderSettings};
 
 /// How the viewer starts (from the command line).
 #[derive(Clone, Debug)]
@@ -54,7 +54,7 @@ pub struct ViewOptions {
     /// A pixel to probe from the start.
     pub probe: Option<(u32, u32)>,
     /// The probed sample whose path is drawn.
-    pub probe_sample: crate::path_view::PathSample,
+    pub probe_sample: crate::analysis::path_view::PathSample,
 }
 
 impl Default for ViewOptions {
@@ -72,7 +72,7 @@ impl Default for ViewOptions {
             convergence_plot: false,
             display_mode: DisplayMode::Image,
             probe: None,
-            probe_sample: crate::path_view::PathSample::default(),
+            probe_sample: crate::analysis::path_view::PathSample::default(),
         }
     }
 }
@@ -132,7 +132,7 @@ pub struct LumiereApp {
     /// The object clicked last, if any.
     pub selected: Option<u32>,
     /// A BVH over every triangle of the scene it was built for, to pick objects.
-    picking: Option<(Arc<Scene>, crate::accel::Accel)>,
+    picking: Option<(Arc<Scene>, crate::geometry::accel::Accel)>,
     bench: Option<bench::Bench>,
     /// Save the settings for the next run (only the plain `lumiere` viewer does).
     persist: bool,
@@ -292,7 +292,7 @@ impl LumiereApp {
 
     /// The noise view shown, if any: the mode is not the image and its
     /// false colour is ready (it can be one snapshot old).
-    pub fn noise_image(&self) -> Option<Arc<crate::noise::FalseColour>> {
+    pub fn noise_image(&self) -> Option<Arc<crate::analysis::noise::FalseColour>> {
         self.noise_view
             .image(self.state.noise)
             .map(|(_, image)| image)
@@ -447,7 +447,7 @@ impl LumiereApp {
             snapshot,
             film: self.renderer.film(),
             per_term_exr: self.state.per_term_exr,
-            sidecar: crate::sidecar::Sidecar {
+            sidecar: crate::render::sidecar::Sidecar {
                 scene: self.scene_spec.clone(),
                 camera: self.camera.clone(),
                 settings: self.state.settings.clone(),

@@ -1,7 +1,7 @@
 //! Noise views on screen: the false-colour image, computed off the UI thread
 //! whenever a new snapshot arrives or the view changes, and its legend.
 //!
-//! The values and colours come from `crate::noise`; this module only decides
+//! The values and colours come from `crate::analysis::noise`; this module only decides
 //! when to compute them (one job at a time, always for the latest snapshot)
 //! and draws the colour bar with its ticks, unit and mode.
 
@@ -11,12 +11,12 @@ use std::time::{Duration, Instant};
 
 use eframe::egui;
 
-use crate::film::Film;
-use crate::metrics::ReferenceImage;
-use crate::noise::{
+use crate::analysis::metrics::ReferenceImage;
+use crate::analysis::noise::{
     self, DisplayMode, FalseColour, NO_VALUE_SRGB, NoiseSource, NoiseView, Scale, Unit,
 };
-use crate::settings::TermSet;
+use crate::render::film::Film;
+use crate::render::settings::TermSet;
 
 /// Height of the legend strip under the image, in points.
 pub const LEGEND_HEIGHT: f32 = 46.0;

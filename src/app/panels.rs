@@ -7,9 +7,9 @@ use eframe::egui;
 use super::noise_view::{self, LEGEND_HEIGHT};
 use super::probe_view::{self, ImageMapping};
 use super::{LumiereApp, display, interact, reference, split};
-use crate::noise::{DisplayMode, NoiseSource, Scale};
-use crate::progressive::Snapshot;
-use crate::settings::{
+use crate::analysis::noise::{DisplayMode, NoiseSource, Scale};
+use crate::render::progressive::Snapshot;
+use crate::render::settings::{
     Adaptive, BrdfOverride, IndirectSampling, LightMode, LightSampling, LightSelection,
     MAX_SAMPLES_PER_VERTEX, MisHeuristic, Sampler, Term, Tonemap,
 };

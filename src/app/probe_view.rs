@@ -1,10 +1,10 @@
 //! The pixel probe on screen: a click picks a pixel, a thread traces its
-//! samples again (`crate::probe`), a window shows each visible term's
+//! samples again (`crate::analysis::probe`), a window shows each visible term's
 //! statistics and the histogram of its sample luminance, and a marker shows
 //! the pixel on the image.
 //!
 //! The path view draws over the image the rays of one of the pixel's samples
-//! (`crate::path_view`): it is traced again on the UI thread (one sample: a
+//! (`crate::analysis::path_view`): it is traced again on the UI thread (one sample: a
 //! few microseconds) with the probe's render context.
 //!
 //! The probe keeps its own render context (lights and BVH built for the
@@ -19,14 +19,14 @@ use std::time::{Duration, Instant};
 use eframe::egui;
 use egui_plot::{Bar, BarChart, Plot, VLine};
 
-use crate::film::Film;
-use crate::integrator::{PathLog, RenderContext};
-use crate::path_view::{PathLine, PathSample, RayRole, path_lines, segment_luminance};
-use crate::probe::{FilmPixel, MAX_PROBE_SAMPLES, PixelProbe, TermProbe, trace_pixel};
-use crate::progressive::ViewRequest;
+use crate::analysis::path_view::{PathLine, PathSample, RayRole, path_lines, segment_luminance};
+use crate::analysis::probe::{FilmPixel, MAX_PROBE_SAMPLES, PixelProbe, TermProbe, trace_pixel};
+use crate::render::film::Film;
+use crate::render::progressive::ViewRequest;
+use crate::render::settings::{LightMode, RenderSettings, Term, TermSet};
 use crate::scene::Scene;
-use crate::settings::{LightMode, RenderSettings, Term, TermSet};
-use crate::splitting::Continuations;
+use crate::transport::fast::{PathLog, RenderContext};
+use crate::transport::splitting::Continuations;
 
 /// Shortest time between two refreshes of the probe while the film converges.
 pub const REFRESH_INTERVAL: Duration = Duration::from_millis(500);
@@ -400,7 +400,7 @@ fn paint_path(painter: &egui::Painter, mapping: &ImageMapping, lines: &[PathLine
     }
 }
 
-/// The colour of a ray in the path view (`crate::path_view` lists them).
+/// The colour of a ray in the path view (`crate::analysis::path_view` lists them).
 pub fn role_colour(role: RayRole) -> egui::Color32 {
     match role {
         RayRole::Camera => egui::Color32::WHITE,

@@ -1,9 +1,9 @@
 //! The viewer's error measurement: a reference (captured in the background
 //! or loaded from an EXR), the RMSE and relMSE of each new image against it
-//! (see `crate::metrics`), and the curves of the convergence plot.
+//! (see `crate::analysis::metrics`), and the curves of the convergence plot.
 //!
 //! An image is measured only when it shows what the reference is valid for
-//! (`crate::capture::ReferenceKey`): same scene object, camera, size, terms
+//! (`crate::analysis::capture::ReferenceKey`): same scene object, camera, size, terms
 //! and radiance settings; the estimator may differ.
 
 use std::path::Path;
@@ -14,11 +14,11 @@ use eframe::egui;
 use glam::Vec3;
 
 use super::LumiereApp;
-use crate::capture::{ReferenceCapture, ReferenceJob, ReferenceKey};
-use crate::convergence::{CurveSet, ErrorPoint, EstimatorKey, RunId};
-use crate::export::load_exr;
-use crate::metrics::{ReferenceImage, image_error};
-use crate::progressive::Snapshot;
+use crate::analysis::capture::{ReferenceCapture, ReferenceJob, ReferenceKey};
+use crate::analysis::convergence::{CurveSet, ErrorPoint, EstimatorKey, RunId};
+use crate::analysis::metrics::{ReferenceImage, image_error};
+use crate::render::export::load_exr;
+use crate::render::progressive::Snapshot;
 
 /// The two renderers whose images are measured: the main one and, when
 /// comparing, the second estimator.

@@ -13,9 +13,9 @@ use std::sync::Arc;
 use eframe::egui;
 
 use super::LumiereApp;
-use crate::convergence::EstimatorKey;
-use crate::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
-use crate::settings::{IndirectSampling, LightSampling, MAX_SAMPLES_PER_VERTEX, Sampler};
+use crate::analysis::convergence::EstimatorKey;
+use crate::render::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
+use crate::render::settings::{IndirectSampling, LightSampling, MAX_SAMPLES_PER_VERTEX, Sampler};
 
 /// Composed images count their generations from here, away from the workers'.
 const COMPOSITE_GENERATION: u64 = 1 << 62;

@@ -6,7 +6,7 @@ use std::path::Path;
 use glam::{Affine3A, Vec3};
 
 use super::{Camera, Material, Projection, PunctualKind, PunctualLight, Scene};
-use crate::error::SceneError;
+use crate::scene::error::SceneError;
 
 /// The Cornell box from the published measurements, in metres.
 pub const CORNELL_GLTF: &[u8] = include_bytes!("../../assets/cornell-box.gltf");

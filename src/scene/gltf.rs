@@ -65,8 +65,8 @@ use super::{
     Camera, Material, Object, Projection, PunctualKind, PunctualLight, Scene, Texture, TextureRef,
     Triangle, WrapMode, append_vertex_attribute,
 };
-use crate::error::SceneError;
-use crate::film::memory_ceiling;
+use crate::render::film::memory_ceiling;
+use crate::scene::error::SceneError;
 
 /// What went wrong, in words; [`SceneError`] adds the file name.
 type Problem = String;

@@ -4,13 +4,14 @@
 //! optional shading normals, two UV sets), triangles that index it, materials
 //! in the glTF metallic-roughness form, textures decoded to linear RGB,
 //! punctual lights and cameras. Policy (which terms, which light mode, BRDF
-//! override) lives in [`crate::settings::RenderSettings`]; derived structures
+//! override) lives in [`crate::render::settings::RenderSettings`]; derived structures
 //! (BVH, light table) are built from the scene, never cached inside it.
 //!
 //! Units follow the course (`docs/conventions.md`): metres, emitted radiance
 //! in W·m⁻²·sr⁻¹, radiant intensity in W·sr⁻¹, irradiance in W·m⁻².
 
 pub mod builtin;
+pub mod error;
 pub mod gltf;
 pub mod texture;
 

@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 use lumiere::geometry::Ray;
-use lumiere::integrator::RayCounts;
 use lumiere::render::{Budget, RenderStats, render};
-use lumiere::sampling::SampleStream;
+use lumiere::transport::fast::RayCounts;
+use lumiere::transport::sampling::SampleStream;
 use lumiere::{Film, RenderContext, RenderSettings, Scene, Term, TermSet};
 
 /// Adds the plane z = 0, 2·`half_side` wide, facing +z.
@@ -50,7 +50,7 @@ pub fn mean_and_error(film: &Film, term: Term) -> (f64, f64) {
     let buffer = film.term(term).expect("term rendered");
     let n = film.pixel_count() as f64;
     let mean = (0..film.pixel_count())
-        .map(|i| lumiere::color::luminance(buffer.mean(i).as_vec3()) as f64)
+        .map(|i| lumiere::render::color::luminance(buffer.mean(i).as_vec3()) as f64)
         .sum::<f64>()
         / n;
     let variance: f64 = (0..film.pixel_count())

@@ -1,0 +1,459 @@
+//! Progressive rendering on a worker thread, for the viewer.
+//!
+//! The caller (the UI thread) never waits on the renderer: it posts a
+//! [`ViewRequest`] — the whole description of what should be on screen — into
+//! a latest-wins mailbox, and reads the latest [`Snapshot`] the worker
+//! published. The worker adds one sample per pixel per pass over all cores
+//! and decides what a new request costs:
+//!
+//! * a change of radiance (scene, light mode or radius, BRDF, camera, size,
+//!   seed, bounces) **restarts**: the film is cleared, a quick preview at a
+//!   quarter of the resolution is published first, then full-resolution passes;
+//!   the pass under way is cancelled between tiles so the restart is prompt;
+//! * a change of the visible terms does **not** restart: each term has its own
+//!   accumulator and sample count; hidden terms are no longer computed but keep
+//!   their samples, and a term switched on accumulates from where it was;
+//! * pause and "stop at N spp" only start or stop the passes.
+//!
+//! The worker knows nothing of the GUI: it calls a `repaint` closure after
+//! each publication. It renders on rayon's global pool (all cores), or on a
+//! pool of its own when given a thread count, so that two workers can share
+//! the machine equally (the viewer's equal-time comparison).
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard, Weak};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use crate::geometry::camera::CameraRays;
+use crate::render::film::Film;
+use crate::render::settings::{RenderSettings, Term, TermSet};
+use crate::render::{PassBuffer, render_pass_cancellable};
+use crate::scene::{Camera, Scene};
+use crate::transport::fast::{RayCounts, RenderContext};
+use crate::transport::splitting::Continuations;
+
+/// Everything that decides what the viewer shows.
+#[derive(Clone, Debug)]
+pub struct ViewRequest {
+    pub scene: Arc<Scene>,
+    /// `terms` are the visible terms.
+    pub settings: RenderSettings,
+    pub camera: Camera,
+    pub paused: bool,
+    /// Stop adding samples once every visible term has this many per pixel.
+    pub stop_at_spp: Option<u32>,
+}
+
+/// What an image shows: which scene, from where, with which settings.
+#[derive(Clone, Debug)]
+pub struct ImageSource {
+    /// The scene rendered (weak: an image does not keep an old scene alive).
+    pub scene: Weak<Scene>,
+    pub camera: Camera,
+    /// The settings rendered with; `terms` are the terms the image sums.
+    pub settings: RenderSettings,
+}
+
+/// What the worker last finished: the image of the visible terms and its statistics.
+#[derive(Clone, Debug, Default)]
+pub struct Snapshot {
+    /// Increases with every publication.
+    pub generation: u64,
+    /// Number of restarts so far (a term toggle must not add one).
+    pub restarts: u64,
+    pub width: u32,
+    pub height: u32,
+    /// A low-resolution preview published right after a restart.
+    pub preview: bool,
+    /// Linear RGBA radiance (A = 1) of the visible terms, rows from the top.
+    pub radiance: Vec<[f32; 4]>,
+    /// The visible terms this image sums.
+    pub terms: TermSet,
+    /// Samples per pixel of each term.
+    pub term_samples: [u32; Term::COUNT],
+    /// Time spent rendering since the restart.
+    pub elapsed: Duration,
+    /// Rays traced since the restart.
+    pub rays: RayCounts,
+    /// Pixel samples added since the restart.
+    pub pixel_samples: u64,
+    /// Continuations per first hit the samples take (the pilot's choice,
+    /// region by region, with `auto_indirect_samples`).
+    pub continuations: Continuations,
+    /// No more passes will run until the request changes (paused or reached the stop).
+    pub idle: bool,
+    /// What the image shows (`None` before the first publication).
+    pub source: Option<ImageSource>,
+}
+
+impl Snapshot {
+    /// The fewest samples per pixel among the visible terms.
+    pub fn samples_per_pixel(&self) -> u32 {
+        self.terms
+            .iter()
+            .map(|t| self.term_samples[t.index()])
+            .min()
+            .unwrap_or(0)
+    }
+
+    pub fn samples_per_second(&self) -> f64 {
+        self.pixel_samples as f64 / self.elapsed.as_secs_f64().max(1e-9)
+    }
+
+    pub fn mrays_per_second(&self) -> f64 {
+        self.rays.total() as f64 / self.elapsed.as_secs_f64().max(1e-9) / 1e6
+    }
+}
+
+#[derive(Default)]
+struct Mailbox {
+    request: Option<ViewRequest>,
+    quit: bool,
+}
+
+struct Shared {
+    mailbox: Mutex<Mailbox>,
+    wake: Condvar,
+    /// Set when a request arrives: the pass under way gives up.
+    cancel: AtomicBool,
+    snapshot: Mutex<Arc<Snapshot>>,
+    /// The film being accumulated (a new one after each restart), for export.
+    film: Mutex<Option<Arc<Mutex<Film>>>>,
+}
+
+/// The handle of a render worker thread; dropping it stops the thread.
+pub struct ProgressiveRenderer {
+    shared: Arc<Shared>,
+    thread: Option<JoinHandle<()>>,
+}
+
+fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
+    // a panic elsewhere must not take the viewer down with a poisoned lock
+    mutex
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
+impl ProgressiveRenderer {
+    /// Starts the worker on `request`; `repaint` is called after each publication.
+    pub fn spawn(request: ViewRequest, repaint: impl Fn() + Send + 'static) -> Self {
+        Self::spawn_with_threads(request, None, repaint)
+    }
+
+    /// [`spawn`](Self::spawn) on a pool of `threads` threads of its own
+    /// (`None`: rayon's global pool, all cores).
+    pub fn spawn_with_threads(
+        request: ViewRequest,
+        threads: Option<usize>,
+        repaint: impl Fn() + Send + 'static,
+    ) -> Self {
+        let shared = Arc::new(Shared {
+            mailbox: Mutex::new(Mailbox {
+                request: Some(request),
+                quit: false,
+            }),
+            wake: Condvar::new(),
+            cancel: AtomicBool::new(false),
+            snapshot: Mutex::new(Arc::new(Snapshot::default())),
+            film: Mutex::new(None),
+        });
+        let worker_shared = Arc::clone(&shared);
+        let thread = std::thread::Builder::new()
+            .name("lumiere render".into())
+            .spawn(move || {
+                let worker = Worker::new(worker_shared, Box::new(repaint));
+                match threads {
+                    None => worker.run(),
+                    Some(threads) => rayon::ThreadPoolBuilder::new()
+                        .num_threads(threads.max(1))
+                        .thread_name(|i| format!("lumiere render {i}"))
+                        .build()
+                        .expect("cannot start the render threads")
+                        .install(|| worker.run()),
+                }
+            })
+            .expect("cannot start the render thread");
+        Self {
+            shared,
+            thread: Some(thread),
+        }
+    }
+
+    /// Replaces what should be rendered (the latest request wins).
+    pub fn request(&self, request: ViewRequest) {
+        lock(&self.shared.mailbox).request = Some(request);
+        self.shared.cancel.store(true, Ordering::Relaxed);
+        self.shared.wake.notify_one();
+    }
+
+    /// The latest published snapshot.
+    pub fn snapshot(&self) -> Arc<Snapshot> {
+        Arc::clone(&lock(&self.shared.snapshot))
+    }
+
+    /// The film being accumulated. The worker holds its lock during a pass:
+    /// read it from another thread than the UI's (export does).
+    pub fn film(&self) -> Option<Arc<Mutex<Film>>> {
+        lock(&self.shared.film).clone()
+    }
+}
+
+impl Drop for ProgressiveRenderer {
+    fn drop(&mut self) {
+        lock(&self.shared.mailbox).quit = true;
+        self.shared.cancel.store(true, Ordering::Relaxed);
+        self.shared.wake.notify_one();
+        if let Some(thread) = self.thread.take() {
+            let _ = thread.join();
+        }
+    }
+}
+
+/// What the worker renders now.
+struct Current {
+    request: ViewRequest,
+    context: RenderContext,
+    film: Arc<Mutex<Film>>,
+    next_sample: u32,
+    needs_preview: bool,
+    elapsed: Duration,
+    rays: RayCounts,
+    pixel_samples: u64,
+    /// Adaptive sampling has stopped every pixel: the last pass traced nothing.
+    converged: bool,
+}
+
+impl Current {
+    /// Whether no pass is due, given the current film (locked by the caller).
+    fn is_idle(&self, film: &Film) -> bool {
+        let request = &self.request;
+        let spp = request
+            .settings
+            .terms
+            .iter()
+            .map(|t| film.samples(t))
+            .min()
+            .unwrap_or(0);
+        !self.needs_preview
+            && (request.paused || self.converged || request.stop_at_spp.is_some_and(|n| spp >= n))
+    }
+}
+
+struct Worker {
+    shared: Arc<Shared>,
+    repaint: Box<dyn Fn() + Send>,
+    current: Option<Current>,
+    buffer: PassBuffer,
+    generation: u64,
+    restarts: u64,
+}
+
+impl Worker {
+    fn new(shared: Arc<Shared>, repaint: Box<dyn Fn() + Send>) -> Self {
+        Self {
+            shared,
+            repaint,
+            current: None,
+            buffer: PassBuffer::default(),
+            generation: 0,
+            restarts: 0,
+        }
+    }
+
+    fn run(mut self) {
+        loop {
+            let request = {
+                let mut mailbox = lock(&self.shared.mailbox);
+                while !mailbox.quit && mailbox.request.is_none() && self.is_idle() {
+                    mailbox = self
+                        .shared
+                        .wake
+                        .wait(mailbox)
+                        .unwrap_or_else(|poisoned| poisoned.into_inner());
+                }
+                if mailbox.quit {
+                    return;
+                }
+                self.shared.cancel.store(false, Ordering::Relaxed);
+                mailbox.request.take()
+            };
+            if let Some(request) = request {
+                self.apply(request);
+            }
+            if !self.is_idle() {
+                self.step();
+            }
+        }
+    }
+
+    fn is_idle(&self) -> bool {
+        self.current
+            .as_ref()
+            .is_none_or(|current| current.is_idle(&lock(&current.film)))
+    }
+
+    /// Takes a new request: rebuilds, restarts or only retargets the terms.
+    fn apply(&mut self, request: ViewRequest) {
+        let settings = &request.settings;
+        let Some(current) = &mut self.current else {
+            self.start(request);
+            return;
+        };
+        let old = &current.request;
+        let rebuild = !Arc::ptr_eq(&old.scene, &request.scene)
+            || old.settings.light_mode != settings.light_mode
+            || old.settings.light_radius != settings.light_radius;
+        let restart = rebuild
+            || old.camera != request.camera
+            || RenderSettings {
+                terms: settings.terms,
+                ..old.settings.clone()
+            } != *settings;
+        if rebuild {
+            self.start(request);
+        } else if restart {
+            current.context.settings = settings.clone();
+            current.context.camera =
+                CameraRays::new(&request.camera, settings.width, settings.height);
+            current.context.update_continuations();
+            current.film = Arc::new(Mutex::new(Film::new(settings.width, settings.height)));
+            *lock(&self.shared.film) = Some(Arc::clone(&current.film));
+            current.next_sample = 0;
+            current.needs_preview = true;
+            current.elapsed = Duration::ZERO;
+            current.rays = RayCounts::default();
+            current.pixel_samples = 0;
+            current.converged = false;
+            current.request = request;
+            self.restarts += 1;
+        } else {
+            // visible terms, pause or stop changed: no restart
+            current.context.settings.terms = settings.terms;
+            current.converged = false;
+            current.request = request;
+            self.publish_full();
+        }
+    }
+
+    /// Builds lights and BVH for `request` and starts from an empty film.
+    fn start(&mut self, request: ViewRequest) {
+        let settings = request.settings.clone();
+        let context = RenderContext::with_camera(
+            Arc::clone(&request.scene),
+            settings.clone(),
+            Some(&request.camera),
+        );
+        let film = Arc::new(Mutex::new(Film::new(settings.width, settings.height)));
+        *lock(&self.shared.film) = Some(Arc::clone(&film));
+        self.restarts += 1;
+        self.current = Some(Current {
+            film,
+            context,
+            request,
+            next_sample: 0,
+            needs_preview: true,
+            elapsed: Duration::ZERO,
+            rays: RayCounts::default(),
+            pixel_samples: 0,
+            converged: false,
+        });
+    }
+
+    /// One unit of work: the preview after a restart, else one full pass.
+    fn step(&mut self) {
+        let Some(current) = &mut self.current else {
+            return;
+        };
+        let start = Instant::now();
+        if current.needs_preview {
+            let preview = Self::render_preview(current, &mut self.buffer, &self.shared.cancel);
+            current.elapsed += start.elapsed();
+            current.needs_preview = false;
+            if let Some(film) = preview {
+                self.publish(&film, true, false);
+            }
+            return;
+        }
+        let mut film = lock(&current.film);
+        let pass = render_pass_cancellable(
+            &current.context,
+            &mut film,
+            current.next_sample,
+            &mut self.buffer,
+            &self.shared.cancel,
+        );
+        drop(film);
+        current.elapsed += start.elapsed();
+        if let Some(counts) = pass {
+            current.rays.add(&counts);
+            // one camera ray per sample traced (adaptive sampling traces fewer than the pixels)
+            current.pixel_samples += counts.camera;
+            current.converged = counts.camera == 0;
+            current.next_sample += 1;
+            self.publish_full();
+        }
+    }
+
+    /// One sample per pixel at a quarter of the resolution.
+    fn render_preview(
+        current: &mut Current,
+        buffer: &mut PassBuffer,
+        cancel: &AtomicBool,
+    ) -> Option<Film> {
+        let settings = &current.request.settings;
+        let (width, height) = (settings.width.div_ceil(4), settings.height.div_ceil(4));
+        let full_camera = std::mem::replace(
+            &mut current.context.camera,
+            CameraRays::new(&current.request.camera, width, height),
+        );
+        let mut film = Film::new(width, height);
+        let counts = render_pass_cancellable(&current.context, &mut film, 0, buffer, cancel);
+        current.context.camera = full_camera;
+        current.rays.add(&counts?);
+        Some(film)
+    }
+
+    fn publish_full(&mut self) {
+        if let Some(current) = &self.current {
+            let film = Arc::clone(&current.film);
+            let film = lock(&film);
+            let idle = current.is_idle(&film);
+            self.publish(&film, false, idle);
+        }
+    }
+
+    fn publish(&mut self, film: &Film, preview: bool, idle: bool) {
+        let Some(current) = &self.current else {
+            return;
+        };
+        let terms = current.request.settings.terms;
+        self.generation += 1;
+        let snapshot = Snapshot {
+            generation: self.generation,
+            restarts: self.restarts,
+            width: film.width,
+            height: film.height,
+            preview,
+            radiance: film
+                .radiance(terms)
+                .into_iter()
+                .map(|p| p.extend(1.0).to_array())
+                .collect(),
+            terms,
+            term_samples: Term::ALL.map(|t| if preview { 0 } else { film.samples(t) }),
+            elapsed: current.elapsed,
+            rays: current.rays,
+            pixel_samples: current.pixel_samples,
+            continuations: current.context.continuations.clone(),
+            idle,
+            source: Some(ImageSource {
+                scene: Arc::downgrade(&current.request.scene),
+                camera: current.request.camera.clone(),
+                settings: current.request.settings.clone(),
+            }),
+        };
+        *lock(&self.shared.snapshot) = Arc::new(snapshot);
+        (self.repaint)();
+    }
+}

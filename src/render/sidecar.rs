@@ -1,0 +1,52 @@
+//! The JSON sidecar written next to every screenshot: every setting needed
+//! to render the same image again (`lumiere render --settings FILE`).
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use crate::render::settings::{DisplaySettings, RenderSettings};
+use crate::scene::Camera;
+
+/// Every setting of a screenshot.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Sidecar {
+    /// The scene: `cornell` or a path to a glTF file.
+    pub scene: String,
+    pub camera: Camera,
+    /// Resolution, terms, light mode, BRDF override, seed, bounces.
+    pub settings: RenderSettings,
+    pub display: DisplaySettings,
+    /// Samples per pixel of the image (the fewest among its terms).
+    pub samples_per_pixel: u32,
+}
+
+/// A sidecar that could not be read or written.
+#[derive(Debug, thiserror::Error)]
+#[error("{}: {problem}", path.display())]
+pub struct SidecarError {
+    pub path: PathBuf,
+    pub problem: String,
+}
+
+impl Sidecar {
+    pub fn load(path: &Path) -> Result<Self, SidecarError> {
+        let fail = |problem: String| SidecarError {
+            path: path.to_path_buf(),
+            problem,
+        };
+        let text = std::fs::read_to_string(path).map_err(|e| fail(format!("cannot read: {e}")))?;
+        let sidecar: Sidecar = serde_json::from_str(&text)
+            .map_err(|e| fail(format!("not a lumiere settings file: {e}")))?;
+        sidecar.settings.validate().map_err(fail)?;
+        Ok(sidecar)
+    }
+
+    pub fn save(&self, path: &Path) -> Result<(), SidecarError> {
+        let text = serde_json::to_string_pretty(self).expect("settings serialise");
+        std::fs::write(path, text).map_err(|e| SidecarError {
+            path: path.to_path_buf(),
+            problem: format!("cannot write: {e}"),
+        })
+    }
+}

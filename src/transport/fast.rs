@@ -1,0 +1,1186 @@
+//! The path tracer: one walk per sample that files every contribution under its term.
+//!
+//! A path leaves the camera; after k reflections it carries the throughput
+//! β = Π f cos / pdf of the directions that continued it. Light reaches the
+//! camera along it in three ways, each filed under the term of its number of
+//! reflections (`Term::of_reflections`):
+//!
+//! * **emission hit** — the path's k-th segment lands on an emitter:
+//!   β · L_e · w, filed under L_k (k = 0 is L0, the emitter seen directly, w = 1);
+//! * **light sample** — at the vertex of the (k+1)-th reflection a light is
+//!   drawn: β · f · L_i · cos θ / pdf_light · w_light, under L_{k+1};
+//! * **gathered direction** — at that vertex a direction is drawn (by the
+//!   BRDF, or uniformly on the hemisphere) and traced: if it lands on an
+//!   emitter, β · f · L_e · cos θ / pdf_gather · w_gather, under L_{k+1}.
+//!
+//! ## Direct lighting at a vertex (`RenderSettings::light_sampling`)
+//!
+//! For an extended light (triangle or sphere) the weights of the two sample
+//! kinds sum to one, so each light is counted once:
+//!
+//! | strategy | w_light | w_gather |
+//! |---|---|---|
+//! | `area`, `solid-angle` | 1 | 0 (no direction is gathered) |
+//! | `brdf`, `hemisphere` | 0 (no shadow ray) | 1 |
+//! | `mis` | h(pdf_light, pdf_brdf) | h(pdf_brdf, pdf_light) |
+//!
+//! with h the balance heuristic p_a / (p_a + p_b) or the power heuristic
+//! p_a² / (p_a² + p_b²) (`mis_heuristic`); pdf_light is the density with which
+//! light sampling picks that point (selection included), pdf_brdf the BRDF's.
+//! A Dirac light (point, spot, directional) cannot be hit: its light samples
+//! keep w_light = 1 under every strategy. A Dirac BRDF (mirror) cannot sample
+//! a light: no light sample, and the emission hit of its continuation keeps
+//! w = 1. With `light_samples` = N, the vertex draws N light samples and/or N
+//! gathered directions, each weighted 1/N, the j-th from `stream.split(j, N)`.
+//!
+//! **Reuse.** When N = 1 and the continuations are drawn from the gathering
+//! distribution (`brdf`/`mis` with `indirect_sampling brdf`, `hemisphere`
+//! with `indirect_sampling uniform`), the continuation rays are the
+//! gathered directions: their emission hits get w_gather. With M > 1
+//! continuations (splitting at the first hit, where they are traced anyway
+//! for the later terms) that is one light sample against M BRDF samples of
+//! weight 1/M each, and multi-sample MIS (Veach) compares pdf_light with
+//! M·pdf_brdf in both weights, which still sum to one. Otherwise gathered
+//! directions are rays of their own and the continuation's emission hits
+//! get w = 0 (the light is estimated by the vertex's own samples), except
+//! after a mirror.
+//!
+//! ## The continuation (`indirect_sampling`, `indirect_samples`)
+//!
+//! The next direction is drawn uniformly on the hemisphere (pdf 1/2π), by
+//! cosine (cos θ/π) or by the BRDF's own routine (a mirror always uses its
+//! own); β *= f cos θ / pdf. At the first hit the path splits into M =
+//! `indirect_samples` continuations (with `--indirect-samples auto`, the
+//! pilot's count for the pixel's region: `splitting`), each the rest of a full path driven by
+//! `stream.split(m, M)` with β / M. Russian roulette starts after the fourth
+//! reflection (it only touches L3+), with survival min(M β, 0.95): the
+//! sample's throughput, so that splitting does not shorten the
+//! continuations (which would undo it for L3+). `max_bounces` caps the
+//! reflections.
+//!
+//! ## Work skipped
+//!
+//! Nothing is traced for a term that is off: no light sample or gathered
+//! direction at a vertex whose next term is off (`--terms L2` traces no shadow
+//! ray at the first hit), no vertex beyond the last term needed (`--terms L0`
+//! traces camera rays only), no continuation whose only use would be an
+//! emission hit of weight 0, no shadow ray for a light behind the surface,
+//! no gathered direction in a scene whose lights cannot be hit (points,
+//! spots, the sun). A direction traced only to find a light (a gathered one,
+//! or the path's last segment) asks [`Accel::search_emitters`], which
+//! searches the whole scene only if the ray meets a light. [`SkippedWork`]
+//! counts each.
+
+use std::sync::Arc;
+
+use glam::Vec3;
+
+use crate::geometry::accel::{Accel, Hit, Query};
+use crate::geometry::camera::CameraRays;
+use crate::geometry::{Frame, Ray};
+use crate::render::settings::{
+    IndirectSampling, LightSampling, MisHeuristic, RenderSettings, Term, TermSet,
+};
+use crate::scene::{Camera, Scene};
+use crate::transport::brdf::{Brdf, BrdfSample};
+use crate::transport::lights::LightTable;
+use crate::transport::sampling::{
+    SampleStream, UNIFORM_HEMISPHERE_PDF, balance_heuristic, cosine_hemisphere,
+    cosine_hemisphere_pdf, dim, power_heuristic, uniform_hemisphere,
+};
+use crate::transport::splitting::Continuations;
+use crate::transport::surface::SurfacePoint;
+
+/// Radiance of one sample, per term.
+pub type TermRadiance = [Vec3; Term::COUNT];
+
+/// Rays traced, by kind and by the lowest selected term each serves: the
+/// shadow ray or gathered direction at the k-th reflection serves L_k; a ray
+/// leaving the camera (k = 0) or the k-th reflection serves L_k and every
+/// later term.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RayCounts {
+    pub camera: u64,
+    pub shadow: u64,
+    pub bounce: u64,
+    /// Directions traced only to find lights (not continuing the path).
+    pub gather: u64,
+    pub per_term: [u64; Term::COUNT],
+    /// Work the settings and the scene made unnecessary.
+    pub skipped: SkippedWork,
+    /// Samples with a NaN, infinite or negative term, zeroed before they reach the film.
+    pub invalid_samples: u64,
+    /// Camera rays, bounces and gathered directions that left the scene (in a
+    /// closed scene, leaks).
+    pub escaped: u64,
+}
+
+/// The reflections after which Russian roulette may end a path: from the
+/// fourth on, so that it only touches L3+ and never its largest part, the
+/// third reflection's (its light samples and what the continuation after
+/// it hits). Starting after the third took 8–15% longer to reach relMSE 10⁻³
+/// on the Cornell box with every term (Sobol, 256×256, `docs/benchmarks.md`):
+/// the roulette's weights 1/q add noise where L3+ is largest.
+pub const ROULETTE_FROM_REFLECTION: u32 = 4;
+
+/// Work not done because nothing would come of it, counted to show what the
+/// settings and the scene save.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SkippedWork {
+    /// Shadow rays not traced: the light sample was behind the surface or carried nothing.
+    pub shadow_rays: u64,
+    /// Vertices whose direct lighting was not estimated: its term is off.
+    pub direct_lighting: u64,
+    /// Directions not gathered: the scene has no light a ray can hit.
+    pub gathered: u64,
+    /// Continuations not traced: no selected term needs another reflection.
+    pub continuations: u64,
+    /// Paths ended by Russian roulette.
+    pub roulette: u64,
+    /// Samples of a pixel's term not taken: adaptive sampling had stopped it.
+    pub converged: u64,
+    /// Searches of the whole scene's BVH not made: a direction traced only to
+    /// find a light met no light's box or triangle (the ray itself is traced,
+    /// against the lights alone).
+    pub scene_searches: u64,
+}
+
+impl SkippedWork {
+    /// Rays that were not traced.
+    pub fn rays(&self) -> u64 {
+        self.shadow_rays + self.gathered + self.continuations + self.roulette
+    }
+
+    pub fn add(&mut self, other: &SkippedWork) {
+        self.shadow_rays += other.shadow_rays;
+        self.direct_lighting += other.direct_lighting;
+        self.gathered += other.gathered;
+        self.continuations += other.continuations;
+        self.roulette += other.roulette;
+        self.converged += other.converged;
+        self.scene_searches += other.scene_searches;
+    }
+
+    /// One line for summaries: the non-zero counts.
+    pub fn describe(&self) -> String {
+        let parts: Vec<String> = [
+            (self.shadow_rays, "shadow rays (light behind the surface)"),
+            (self.direct_lighting, "light samplings (term off)"),
+            (self.gathered, "gathered directions (no light to hit)"),
+            (self.continuations, "continuations (no term needs them)"),
+            (self.roulette, "paths ended by Russian roulette"),
+            (
+                self.converged,
+                "term samples of converged pixels (adaptive)",
+            ),
+            (
+                self.scene_searches,
+                "scene searches (light searches that met no light)",
+            ),
+        ]
+        .iter()
+        .filter(|(n, _)| *n > 0)
+        .map(|(n, what)| format!("{n} {what}"))
+        .collect();
+        if parts.is_empty() {
+            "nothing".into()
+        } else {
+            parts.join(", ")
+        }
+    }
+}
+
+impl RayCounts {
+    pub fn total(&self) -> u64 {
+        self.camera + self.shadow + self.bounce + self.gather
+    }
+
+    pub fn add(&mut self, other: &RayCounts) {
+        self.camera += other.camera;
+        self.shadow += other.shadow;
+        self.bounce += other.bounce;
+        self.gather += other.gather;
+        for (mine, theirs) in self.per_term.iter_mut().zip(other.per_term) {
+            *mine += theirs;
+        }
+        self.skipped.add(&other.skipped);
+        self.invalid_samples += other.invalid_samples;
+        self.escaped += other.escaped;
+    }
+}
+
+/// The segments of one traced sample, for drawing its path.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PathLog {
+    pub segments: Vec<PathSegment>,
+}
+
+impl PathLog {
+    /// The contributions of the segments, summed per term.
+    pub fn radiance(&self) -> TermRadiance {
+        let mut radiance = [Vec3::ZERO; Term::COUNT];
+        for segment in &self.segments {
+            radiance[segment.term.index()] += segment.radiance;
+        }
+        radiance
+    }
+}
+
+/// One ray of a traced sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PathSegment {
+    pub from: Vec3,
+    /// The ray as traced (origin, direction, t_max): what a replay through
+    /// the BVH asks again (`bench::throughput`).
+    pub ray: Ray,
+    /// Where the ray stopped: its hit, the light point of a shadow ray, or one
+    /// scene diagonal away for a ray that left the scene.
+    pub to: Vec3,
+    pub kind: SegmentKind,
+    /// How it was traced: what a replay through the BVH asks again.
+    pub query: Query,
+    /// The term its contribution is filed under (the lowest it serves).
+    pub term: Term,
+    /// The radiance it added to `term` (zero if none).
+    pub radiance: Vec3,
+}
+
+/// What a traced ray was for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SegmentKind {
+    Camera,
+    /// A continuation of the path (next reflection).
+    Bounce,
+    /// Towards a light sample.
+    Shadow {
+        occluded: bool,
+        /// The sphere light the ray aims at, which does not block it.
+        target_sphere: Option<u32>,
+    },
+    /// A direction traced only to find a light.
+    Gather {
+        hit_light: bool,
+    },
+}
+
+/// What the continuations of one pilot sample brought (`RenderContext::pilot_sample`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContinuationSplit {
+    /// The radiance of each of the two continuations, summed over the
+    /// terms and unweighted (what it would bring alone, M = 1).
+    pub continuations: [Vec3; 2],
+    /// `RayCounts::total` once the first vertex's light samples are traced,
+    /// then once the continuations are: the rays of each part, by difference
+    /// with the count before the sample.
+    pub first_rays: u64,
+    pub continuation_rays: u64,
+}
+
+/// Everything a sample needs: the scene, its acceleration structure, its
+/// lights and the settings they were built for.
+pub struct RenderContext {
+    pub scene: Arc<Scene>,
+    pub accel: Accel,
+    pub lights: LightTable,
+    pub settings: RenderSettings,
+    pub camera: CameraRays,
+    /// Continuations per first hit the samples take: `settings.indirect_samples`,
+    /// or the pilot's choice, region by region, with
+    /// `settings.auto_indirect_samples` (`splitting`).
+    pub continuations: Continuations,
+    /// How far the path log draws a ray that left the scene: one scene
+    /// diagonal (at least 1 m), found once, not per ray (it reads every vertex).
+    pub escape_length: f32,
+}
+
+impl RenderContext {
+    /// Builds the lights and the BVH of `scene` for `settings`, with the scene's default camera.
+    pub fn new(scene: impl Into<Arc<Scene>>, settings: RenderSettings) -> Self {
+        Self::with_camera(scene, settings, None)
+    }
+
+    /// [`RenderContext::new`] through `camera` (`None`: the scene's default
+    /// one). With `auto_indirect_samples` the pilot runs here, through that
+    /// camera: the view decides where the noise is.
+    pub fn with_camera(
+        scene: impl Into<Arc<Scene>>,
+        settings: RenderSettings,
+        camera: Option<&Camera>,
+    ) -> Self {
+        let scene = scene.into();
+        let lights = LightTable::build(&scene, &settings);
+        let accel = Accel::build(&scene, |t| !lights.is_hidden(t), lights.spheres.clone());
+        let camera = match camera {
+            Some(camera) => CameraRays::new(camera, settings.width, settings.height),
+            None => CameraRays::new(&scene.default_camera(), settings.width, settings.height),
+        };
+        let escape_length = scene.bounds().diagonal().max(1.0);
+        let mut context = Self {
+            escape_length,
+            scene,
+            accel,
+            lights,
+            continuations: Continuations::uniform(settings.indirect_samples),
+            settings,
+            camera,
+        };
+        context.update_continuations();
+        context
+    }
+
+    /// Sets the continuations per first hit the walks take from the
+    /// settings: their count, or with `auto_indirect_samples` the pilot's
+    /// choice through the current camera. Called once the settings and the
+    /// camera of a film are final.
+    pub fn update_continuations(&mut self) {
+        self.continuations = if self.settings.auto_indirect_samples {
+            crate::transport::splitting::choose_indirect_samples(self).continuations()
+        } else {
+            Continuations::uniform(self.settings.indirect_samples)
+        };
+    }
+
+    /// Renders through `camera` from now on; the continuations per first
+    /// hit stay as they are (a film's samples must all take the same).
+    pub fn set_camera(&mut self, camera: &Camera) {
+        self.camera = CameraRays::new(camera, self.settings.width, self.settings.height);
+    }
+
+    /// One sample of pixel (`x`, `y`) with two continuations at the first
+    /// hit, whatever the settings say, and what each continuation brought:
+    /// the splitting pilot's measurement.
+    pub fn pilot_sample(
+        &self,
+        x: u32,
+        y: u32,
+        stream: &SampleStream,
+        counts: &mut RayCounts,
+    ) -> (TermRadiance, ContinuationSplit) {
+        let ray = self.camera.generate(x, y, stream.uniform2(dim::PIXEL));
+        let mut split = ContinuationSplit::default();
+        let radiance = Walk::new(self, counts, None).split_path(ray, stream, 2, Some(&mut split));
+        (guard_sample(radiance, counts), split)
+    }
+
+    /// One sample of pixel (`x`, `y`): its radiance per term.
+    pub fn sample_pixel(
+        &self,
+        x: u32,
+        y: u32,
+        stream: &SampleStream,
+        counts: &mut RayCounts,
+    ) -> TermRadiance {
+        self.sample_pixel_terms(x, y, stream, counts, self.settings.terms)
+    }
+
+    /// [`RenderContext::sample_pixel`] for the terms of `terms` only (a
+    /// subset of the settings' terms): the others come out zero and their
+    /// work is skipped. A term's value does not depend on which others are
+    /// computed: each random dimension belongs to one vertex and one use.
+    pub fn sample_pixel_terms(
+        &self,
+        x: u32,
+        y: u32,
+        stream: &SampleStream,
+        counts: &mut RayCounts,
+        terms: TermSet,
+    ) -> TermRadiance {
+        let ray = self.camera.generate(x, y, stream.uniform2(dim::PIXEL));
+        let mut walk = Walk::new(self, counts, None);
+        walk.restrict_terms(terms);
+        let radiance = walk.camera_path(ray, stream, self.continuations.at(x, y));
+        guard_sample(radiance, counts)
+    }
+
+    /// [`RenderContext::sample_pixel`] that also appends every ray it traces to `log`.
+    pub fn trace_recorded(
+        &self,
+        x: u32,
+        y: u32,
+        stream: &SampleStream,
+        counts: &mut RayCounts,
+        log: &mut PathLog,
+    ) -> TermRadiance {
+        let ray = self.camera.generate(x, y, stream.uniform2(dim::PIXEL));
+        let splits = self.continuations.at(x, y);
+        let radiance = Walk::new(self, counts, Some(log)).camera_path(ray, stream, splits);
+        guard_sample(radiance, counts)
+    }
+
+    /// Radiance arriving along `ray` (unit direction), per term, with the
+    /// continuations of the whole image.
+    pub fn trace(&self, ray: Ray, stream: &SampleStream, counts: &mut RayCounts) -> TermRadiance {
+        Walk::new(self, counts, None).camera_path(ray, stream, self.continuations.count)
+    }
+}
+
+/// The film's guard: a term whose radiance is not finite or is negative
+/// (a numerical accident; radiance cannot be negative) is set to zero, and the
+/// sample counted in `counts.invalid_samples`. Zeroing biases the pixel
+/// slightly dark, so the count must stay 0; the stress suite checks it does.
+#[inline(always)]
+fn guard_sample(mut radiance: TermRadiance, counts: &mut RayCounts) -> TermRadiance {
+    let mut invalid = false;
+    for term in &mut radiance {
+        if !(term.is_finite() && term.min_element() >= 0.0) {
+            *term = Vec3::ZERO;
+            invalid = true;
+        }
+    }
+    counts.invalid_samples += u64::from(invalid);
+    radiance
+}
+
+/// A distribution of directions on the hemisphere of a vertex.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Directions {
+    /// The BRDF's own sampling routine.
+    Brdf,
+    Uniform,
+    Cosine,
+}
+
+/// How an emission hit is weighted (the `w` of the module doc).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum EmissionWeight {
+    /// Seen from the camera, after a mirror, or found by `brdf`/`hemisphere` gathering.
+    One,
+    /// Light sampling estimates it: the hit adds nothing.
+    Zero,
+    /// Found by a direction of density `pdf` drawn at `from`, against light sampling.
+    Mis { from: Vec3, pdf: f32 },
+}
+
+/// How direct lighting is estimated at one vertex.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Gather {
+    /// No gathered direction.
+    None,
+    /// Directions traced for this purpose only, as many as the light samples.
+    Separate,
+    /// The vertex's `directions` continuations are its gathered directions
+    /// (one light sample against `directions` BRDF samples, each of weight
+    /// 1/`directions`).
+    Continuation { directions: u32 },
+}
+
+impl Gather {
+    /// BRDF samples per light sample at the vertex: the n_brdf / n_light
+    /// of multi-sample MIS (Veach), whose weights compare n_light·pdf_light
+    /// with n_brdf·pdf_brdf.
+    #[inline(always)]
+    fn directions_per_light_sample(self) -> f32 {
+        match self {
+            Gather::Continuation { directions } => directions as f32,
+            Gather::None | Gather::Separate => 1.0,
+        }
+    }
+}
+
+/// A surface point where the path reflects.
+struct Vertex {
+    point: SurfacePoint,
+    brdf: Brdf,
+    frame: Frame,
+    /// Geometric normal on the side the path arrives from.
+    ng: Vec3,
+    wo_local: Vec3,
+    /// Reflections before this one (0: the first hit).
+    index: u32,
+}
+
+/// The state of one sample: the context it reads, the counters and the log
+/// it writes, and the radiance gathered so far. Its small steps are inlined
+/// into the path loop (`#[inline(always)]`): split apart, the per-vertex
+/// calls and moves cost the defaults several percent.
+struct Walk<'a> {
+    context: &'a RenderContext,
+    counts: &'a mut RayCounts,
+    log: Option<&'a mut PathLog>,
+    radiance: TermRadiance,
+    terms: TermSet,
+    last_reflection: u32,
+    can_hit_lights: bool,
+    /// The continuations of the first hit this path is one of: its
+    /// throughput carries 1/M, which Russian roulette must not read as a
+    /// path that brings little.
+    splits: f32,
+}
+
+impl<'a> Walk<'a> {
+    fn new(
+        context: &'a RenderContext,
+        counts: &'a mut RayCounts,
+        log: Option<&'a mut PathLog>,
+    ) -> Self {
+        let settings = &context.settings;
+        let terms = settings.terms;
+        Self {
+            context,
+            counts,
+            log,
+            radiance: [Vec3::ZERO; Term::COUNT],
+            terms,
+            last_reflection: terms
+                .max_reflections()
+                .unwrap_or(0)
+                .min(settings.max_bounces),
+            can_hit_lights: context.lights.has_hittable_lights(),
+            splits: 1.0,
+        }
+    }
+
+    /// Computes only the terms of `terms` (within the settings' terms).
+    fn restrict_terms(&mut self, terms: TermSet) {
+        let settings = &self.context.settings;
+        self.terms = terms.intersection(settings.terms);
+        self.last_reflection = self
+            .terms
+            .max_reflections()
+            .unwrap_or(0)
+            .min(settings.max_bounces);
+    }
+
+    /// The whole sample: the camera segment, then the first vertex and its
+    /// `splits` continuations.
+    fn camera_path(self, ray: Ray, stream: &SampleStream, splits: u32) -> TermRadiance {
+        self.split_path(ray, stream, splits, None)
+    }
+
+    /// [`Walk::camera_path`] with `splits` continuations at the first hit,
+    /// telling `split` (if given) what each continuation brought.
+    #[inline(always)]
+    fn split_path(
+        mut self,
+        ray: Ray,
+        stream: &SampleStream,
+        splits: u32,
+        mut split: Option<&mut ContinuationSplit>,
+    ) -> TermRadiance {
+        self.counts.camera += 1;
+        self.counts.per_term[lowest_selected(self.terms, 0)] += 1;
+        let first = self.follow(ray, 0, Vec3::ONE, EmissionWeight::One, SegmentKind::Camera);
+        let Some(first) = &first else {
+            if let Some(split) = split {
+                split.first_rays = self.counts.total();
+                split.continuation_rays = split.first_rays;
+            }
+            return self.radiance;
+        };
+        let gather = self.gather_plan(first, splits);
+        self.direct_lighting(first, Vec3::ONE, stream, gather);
+        if let Some(split) = split.as_deref_mut() {
+            split.first_rays = self.counts.total();
+        }
+        self.splits = splits as f32;
+        for m in 0..splits {
+            let before = self.radiance;
+            let stream = stream.split(m, splits);
+            let mut throughput = Vec3::splat(1.0 / splits as f32);
+            if let Some(vertex) = self.continuation(first, &mut throughput, &stream, gather) {
+                self.rest_of_path(vertex, throughput, &stream);
+            }
+            if let Some(split) = split.as_deref_mut()
+                && let Some(slot) = split.continuations.get_mut(m as usize)
+            {
+                let added = self.radiance.iter().zip(&before).map(|(a, b)| *a - *b);
+                *slot = added.sum::<Vec3>() * splits as f32;
+            }
+        }
+        if let Some(split) = split {
+            split.continuation_rays = self.counts.total();
+        }
+        self.radiance
+    }
+
+    /// The path from `vertex` on: direct lighting and one continuation per vertex.
+    #[inline]
+    fn rest_of_path(&mut self, mut vertex: Vertex, mut throughput: Vec3, stream: &SampleStream) {
+        loop {
+            let gather = self.gather_plan(&vertex, 1);
+            self.direct_lighting(&vertex, throughput, stream, gather);
+            match self.continuation(&vertex, &mut throughput, stream, gather) {
+                Some(next) => vertex = next,
+                None => return,
+            }
+        }
+    }
+
+    /// Traces `ray` (the path's segment number `reflections`, 0 from the
+    /// camera), files the emission it meets with `weight`, and returns the
+    /// vertex it reaches if the path may reflect there.
+    #[inline(always)]
+    fn follow(
+        &mut self,
+        ray: Ray,
+        reflections: u32,
+        throughput: Vec3,
+        weight: EmissionWeight,
+        kind: SegmentKind,
+    ) -> Option<Vertex> {
+        let term = Term::of_reflections(reflections);
+        let counted = weight != EmissionWeight::Zero && self.terms.contains(term);
+        let Some(hit) = self.accel().closest_hit(&ray) else {
+            self.record_escape(&ray, kind, term);
+            return None;
+        };
+        let mut emitted = Vec3::ZERO;
+        let vertex = match hit {
+            // sphere lights are pure emitters: the path ends here
+            Hit::Sphere { sphere, .. } => {
+                if counted {
+                    let (le, w) = self.sphere_emission(sphere, ray.direction, weight);
+                    emitted = throughput * le * w;
+                }
+                None
+            }
+            Hit::Triangle { triangle, b, .. } => {
+                let point = SurfacePoint::new(&self.context.scene, triangle, b);
+                let wo = -ray.direction;
+                if counted {
+                    let (le, w) = self.triangle_emission(&point, wo, weight);
+                    emitted = throughput * le * w;
+                }
+                self.vertex(point, wo, reflections)
+            }
+        };
+        self.radiance[term.index()] += emitted;
+        self.record(
+            &ray,
+            ray.at(hit.t()),
+            kind,
+            Query::ClosestHit,
+            term,
+            emitted,
+        );
+        vertex
+    }
+
+    /// Traces `ray`, a segment that only looks for a light (the path ends
+    /// where it lands), and files under `term` the emission it finds,
+    /// weighted by `weight` and scaled by `scale` (the throughput times, for
+    /// a gathered direction, its f cos θ / pdf).
+    #[inline(always)]
+    fn find_emitter(
+        &mut self,
+        ray: &Ray,
+        scale: Vec3,
+        weight: EmissionWeight,
+        kind: SegmentKind,
+        term: Term,
+    ) {
+        let search = self.accel().search_emitters(ray);
+        self.counts.skipped.scene_searches += u64::from(!search.scene_searched);
+        let (le, w) = match search.hit {
+            None => (Vec3::ZERO, 0.0),
+            Some(Hit::Sphere { sphere, .. }) => self.sphere_emission(sphere, ray.direction, weight),
+            Some(Hit::Triangle { triangle, b, .. }) => {
+                if self.context.lights.light_of_triangle(triangle).is_some() {
+                    let point = SurfacePoint::new(&self.context.scene, triangle, b);
+                    self.triangle_emission(&point, -ray.direction, weight)
+                } else {
+                    (Vec3::ZERO, 0.0)
+                }
+            }
+        };
+        let added = scale * le * w;
+        self.radiance[term.index()] += added;
+        if self.log.is_some() {
+            self.record_light_search(ray, kind, term, le, added);
+        }
+    }
+
+    /// The vertex at `point` reached along -`wo` after `reflections`
+    /// reflections, if a reflection there can serve a selected term.
+    #[inline(always)]
+    fn vertex(&self, point: SurfacePoint, wo: Vec3, reflections: u32) -> Option<Vertex> {
+        if reflections >= self.last_reflection {
+            return None;
+        }
+        let brdf = point.brdf(&self.context.scene, &self.context.settings);
+        if brdf.is_black() {
+            return None;
+        }
+        let (frame, ng) = point.frame_towards(wo);
+        Some(Vertex {
+            point,
+            brdf,
+            frame,
+            ng,
+            wo_local: frame.to_local(wo),
+            index: reflections,
+        })
+    }
+
+    /// Whether and how directions are gathered at `vertex`, which has `continuations`.
+    #[inline(always)]
+    fn gather_plan(&mut self, vertex: &Vertex, continuations: u32) -> Gather {
+        let settings = &self.context.settings;
+        let wanted = !vertex.brdf.is_delta()
+            && self.terms.contains_reflections(vertex.index + 1)
+            && gather_directions(settings.light_sampling).is_some();
+        if wanted && !self.can_hit_lights {
+            self.counts.skipped.gathered += u64::from(settings.light_samples.max(1));
+        }
+        // M > 1 continuations double as gathered directions only where
+        // they are traced anyway, to serve a later term
+        let traced_anyway = vertex.index + 1 < self.last_reflection;
+        if !(wanted && self.can_hit_lights) {
+            Gather::None
+        } else if settings.light_samples <= 1
+            && (continuations == 1 || traced_anyway)
+            && gather_directions(settings.light_sampling)
+                == Some(self.continuation_directions(&vertex.brdf))
+        {
+            Gather::Continuation {
+                directions: continuations,
+            }
+        } else {
+            Gather::Separate
+        }
+    }
+
+    // ── direct lighting ──────────────────────────────────────────────
+
+    /// The light samples and separately gathered directions of `vertex`, filed under its next term.
+    #[inline(always)]
+    fn direct_lighting(
+        &mut self,
+        vertex: &Vertex,
+        throughput: Vec3,
+        stream: &SampleStream,
+        gather: Gather,
+    ) {
+        if vertex.brdf.is_delta() {
+            return;
+        }
+        if !self.terms.contains_reflections(vertex.index + 1) {
+            // counted when the settings leave the term out (not when adaptive sampling does)
+            let settings_off = !self
+                .context
+                .settings
+                .terms
+                .contains_reflections(vertex.index + 1);
+            self.counts.skipped.direct_lighting += u64::from(settings_off);
+            return;
+        }
+        let settings = &self.context.settings;
+        let count = settings.light_samples.max(1);
+        let share = throughput / count as f32;
+        let light_samples = match settings.light_sampling {
+            LightSampling::Area | LightSampling::SolidAngle | LightSampling::Mis => true,
+            // only the Dirac lights remain for light samples
+            LightSampling::Brdf | LightSampling::Hemisphere => {
+                self.context.lights.has_delta_lights()
+            }
+        };
+        if light_samples {
+            let directions = gather.directions_per_light_sample();
+            for j in 0..count {
+                self.light_sample(vertex, share, &stream.split(j, count), directions);
+            }
+        }
+        if gather == Gather::Separate {
+            for j in 0..count {
+                self.gathered_direction(vertex, share, &stream.split(j, count));
+            }
+        }
+    }
+
+    /// One light sample (next-event estimation) at `vertex`, against
+    /// `directions` gathered directions per light sample (MIS).
+    #[inline(always)]
+    fn light_sample(
+        &mut self,
+        vertex: &Vertex,
+        throughput: Vec3,
+        stream: &SampleStream,
+        directions: f32,
+    ) {
+        let context = self.context;
+        let settings = &context.settings;
+        let base = dim::vertex_base(vertex.index);
+        let Some((index, probability, u_position)) = context
+            .lights
+            .pick_with_position(stream.uniform2(base + dim::LIGHT_POSITION), || {
+                stream.uniform(base + dim::LIGHT_SELECT)
+            })
+        else {
+            return;
+        };
+        let extended = !context.lights.lights[index].is_delta();
+        if extended
+            && matches!(
+                settings.light_sampling,
+                LightSampling::Brdf | LightSampling::Hemisphere
+            )
+        {
+            return; // weight 0: gathering alone finds extended lights
+        }
+        let Some(light) = context.lights.sample_light(
+            &context.scene,
+            &vertex.point,
+            index,
+            probability,
+            u_position,
+        ) else {
+            return;
+        };
+        let wi_local = vertex.frame.to_local(light.wi);
+        let (f, brdf_pdf) = vertex.brdf.eval_and_pdf(vertex.wo_local, wi_local);
+        let f_cos = f * wi_local.z;
+        let contribution = throughput * f_cos * light.radiance / light.pdf;
+        // a light behind the surface (or a zero BRDF) gets no shadow ray
+        if contribution.max_element() <= 0.0 || light.wi.dot(vertex.ng) <= 0.0 {
+            self.counts.skipped.shadow_rays += 1;
+            return;
+        }
+        let term = Term::of_reflections(vertex.index + 1);
+        self.counts.shadow += 1;
+        self.counts.per_term[term.index()] += 1;
+        let occluded = self
+            .accel()
+            .occluded(&light.shadow_ray, light.target_sphere);
+        let mut added = Vec3::ZERO;
+        if !occluded {
+            let weight = if light.delta || settings.light_sampling != LightSampling::Mis {
+                1.0
+            } else {
+                self.mis(light.pdf, directions * brdf_pdf)
+            };
+            added = contribution * weight;
+            self.radiance[term.index()] += added;
+        }
+        let ray = light.shadow_ray;
+        self.record(
+            &ray,
+            ray.at(ray.t_max),
+            SegmentKind::Shadow {
+                occluded,
+                target_sphere: light.target_sphere,
+            },
+            Query::Occlusion,
+            term,
+            added,
+        );
+    }
+
+    /// One direction gathered at `vertex` (traced on its own), counted if it finds a light.
+    fn gathered_direction(&mut self, vertex: &Vertex, throughput: Vec3, stream: &SampleStream) {
+        let Some(directions) = gather_directions(self.context.settings.light_sampling) else {
+            return;
+        };
+        let base = dim::vertex_base(vertex.index);
+        let Some(sample) = draw_direction(
+            &vertex.brdf,
+            vertex.wo_local,
+            directions,
+            stream,
+            base + dim::GATHER_DIRECTION,
+        ) else {
+            return;
+        };
+        let wi = vertex.frame.to_world(sample.wi).normalize();
+        if wi.dot(vertex.ng) <= 0.0 {
+            return; // below the geometric surface: shading-normal artefact
+        }
+        let term = Term::of_reflections(vertex.index + 1);
+        self.counts.gather += 1;
+        self.counts.per_term[term.index()] += 1;
+        let ray = vertex.point.spawn_ray(wi);
+        let weight = self.gather_weight(vertex, sample.pdf);
+        let kind = SegmentKind::Gather { hit_light: false };
+        self.find_emitter(&ray, throughput * sample.weight, weight, kind, term);
+    }
+
+    /// The weight of an emission hit found by a gathered direction of density `pdf` at `vertex`.
+    #[inline]
+    fn gather_weight(&self, vertex: &Vertex, pdf: f32) -> EmissionWeight {
+        match self.context.settings.light_sampling {
+            LightSampling::Mis => EmissionWeight::Mis {
+                from: vertex.point.p,
+                pdf,
+            },
+            LightSampling::Brdf | LightSampling::Hemisphere => EmissionWeight::One,
+            LightSampling::Area | LightSampling::SolidAngle => EmissionWeight::Zero,
+        }
+    }
+
+    // ── continuation ─────────────────────────────────────────────────
+
+    /// The distribution the continuation at a vertex of `brdf` is drawn from.
+    #[inline(always)]
+    fn continuation_directions(&self, brdf: &Brdf) -> Directions {
+        if brdf.is_delta() {
+            return Directions::Brdf;
+        }
+        match self.context.settings.indirect_sampling {
+            IndirectSampling::Uniform => Directions::Uniform,
+            IndirectSampling::Cosine => Directions::Cosine,
+            IndirectSampling::Brdf => Directions::Brdf,
+        }
+    }
+
+    /// Draws and traces the next reflection from `vertex`, updating
+    /// `throughput` (β at `vertex`) to β at the next vertex: that vertex, if
+    /// the path goes on.
+    #[inline(always)]
+    fn continuation(
+        &mut self,
+        vertex: &Vertex,
+        throughput: &mut Vec3,
+        stream: &SampleStream,
+        gather: Gather,
+    ) -> Option<Vertex> {
+        let next = vertex.index + 1;
+        let delta = vertex.brdf.is_delta();
+        // how the emission the continuation may hit is weighted (its pdf comes below)
+        let finds_lights = delta || matches!(gather, Gather::Continuation { .. });
+        // past the last term, a continuation only serves to hit an emitter
+        if next >= self.last_reflection
+            && !(finds_lights && self.can_hit_lights && self.terms.contains_reflections(next))
+        {
+            self.counts.skipped.continuations += 1;
+            return None;
+        }
+        let base = dim::vertex_base(vertex.index);
+        let sample = draw_direction(
+            &vertex.brdf,
+            vertex.wo_local,
+            self.continuation_directions(&vertex.brdf),
+            stream,
+            base + dim::BRDF_DIRECTION,
+        )?;
+        let wi = vertex.frame.to_world(sample.wi).normalize();
+        if wi.dot(vertex.ng) <= 0.0 {
+            return None; // below the geometric surface: shading-normal artefact
+        }
+        let weight = if sample.delta {
+            EmissionWeight::One
+        } else if matches!(gather, Gather::Continuation { .. }) {
+            self.gather_weight(vertex, gather.directions_per_light_sample() * sample.pdf)
+        } else {
+            EmissionWeight::Zero
+        };
+        *throughput *= sample.weight;
+
+        // russian roulette, on the throughput of the sample, not of one
+        // of its M continuations
+        if next >= ROULETTE_FROM_REFLECTION {
+            let survival = (*throughput * self.splits).max_element().min(0.95);
+            if stream.uniform(base + dim::RUSSIAN_ROULETTE) >= survival {
+                self.counts.skipped.roulette += 1;
+                return None;
+            }
+            *throughput /= survival;
+        }
+        self.counts.bounce += 1;
+        self.counts.per_term[lowest_selected(self.terms, next)] += 1;
+        let ray = vertex.point.spawn_ray(wi);
+        if next >= self.last_reflection {
+            // the path ends where this ray lands: it only looks for a light
+            let term = Term::of_reflections(next);
+            self.find_emitter(&ray, *throughput, weight, SegmentKind::Bounce, term);
+            return None;
+        }
+        self.follow(ray, next, *throughput, weight, SegmentKind::Bounce)
+    }
+
+    // ── emission ─────────────────────────────────────────────────────
+
+    /// Radiance leaving emissive `point` towards unit `wo`, and its weight.
+    #[inline(always)]
+    fn triangle_emission(
+        &self,
+        point: &SurfacePoint,
+        wo: Vec3,
+        weight: EmissionWeight,
+    ) -> (Vec3, f32) {
+        let scene = &self.context.scene;
+        let le = point.emitted(scene, wo);
+        let weight = match weight {
+            _ if le.max_element() <= 0.0 => 0.0,
+            EmissionWeight::One => 1.0,
+            EmissionWeight::Zero => 0.0,
+            EmissionWeight::Mis { from, pdf } => {
+                let light_pdf =
+                    self.context
+                        .lights
+                        .pdf_triangle(scene, from, point.triangle, point);
+                self.mis(pdf, light_pdf)
+            }
+        };
+        (le, weight)
+    }
+
+    /// Radiance leaving accel sphere `sphere` along unit `direction`, and its weight.
+    fn sphere_emission(&self, sphere: u32, direction: Vec3, weight: EmissionWeight) -> (Vec3, f32) {
+        let lights = &self.context.lights;
+        match weight {
+            EmissionWeight::Zero => (Vec3::ZERO, 0.0),
+            // the density only matters to MIS: any origin will do
+            EmissionWeight::One => (lights.sphere_emission(sphere, Vec3::ZERO, direction).0, 1.0),
+            EmissionWeight::Mis { from, pdf } => {
+                let (le, light_pdf) = lights.sphere_emission(sphere, from, direction);
+                (le, self.mis(pdf, light_pdf))
+            }
+        }
+    }
+
+    /// The MIS weight of a strategy of density `pdf` against one of density `other`.
+    #[inline]
+    fn mis(&self, pdf: f32, other: f32) -> f32 {
+        match self.context.settings.mis_heuristic {
+            MisHeuristic::Balance => balance_heuristic(pdf, other),
+            MisHeuristic::Power => power_heuristic(pdf, other),
+        }
+    }
+
+    // ── recording ────────────────────────────────────────────────────
+
+    fn accel(&self) -> &'a Accel {
+        &self.context.accel
+    }
+
+    #[inline(always)]
+    fn record(
+        &mut self,
+        ray: &Ray,
+        to: Vec3,
+        kind: SegmentKind,
+        query: Query,
+        term: Term,
+        radiance: Vec3,
+    ) {
+        if let Some(log) = self.log.as_deref_mut() {
+            log.segments.push(PathSegment {
+                from: ray.origin,
+                ray: *ray,
+                to,
+                kind,
+                query,
+                term,
+                radiance,
+            });
+        }
+    }
+
+    /// Records a closest-hit ray that left the scene (it added nothing).
+    #[cold]
+    fn record_escape(&mut self, ray: &Ray, kind: SegmentKind, term: Term) {
+        self.counts.escaped += 1;
+        if self.log.is_some() {
+            let to = self.escape_point(ray);
+            self.record(ray, to, kind, Query::ClosestHit, term, Vec3::ZERO);
+        }
+    }
+
+    /// Where the drawing of a ray that left the scene stops: one scene diagonal away.
+    fn escape_point(&self, ray: &Ray) -> Vec3 {
+        ray.origin + ray.direction.normalize_or_zero() * self.context.escape_length
+    }
+
+    /// Records a ray that looked for a light, which met emission `le` and
+    /// added `added`. Where it stops comes from a closest-hit search, made
+    /// for the log only.
+    #[cold]
+    fn record_light_search(
+        &mut self,
+        ray: &Ray,
+        kind: SegmentKind,
+        term: Term,
+        le: Vec3,
+        added: Vec3,
+    ) {
+        let to = match self.accel().closest_hit(ray) {
+            Some(hit) => ray.at(hit.t()),
+            None => self.escape_point(ray),
+        };
+        let kind = match kind {
+            SegmentKind::Gather { .. } => SegmentKind::Gather {
+                hit_light: le.max_element() > 0.0,
+            },
+            other => other,
+        };
+        self.record(ray, to, kind, Query::VisibleEmitter, term, added);
+    }
+}
+
+/// The distribution of the directions `strategy` gathers, if it gathers any.
+fn gather_directions(strategy: LightSampling) -> Option<Directions> {
+    match strategy {
+        LightSampling::Brdf | LightSampling::Mis => Some(Directions::Brdf),
+        LightSampling::Hemisphere => Some(Directions::Uniform),
+        LightSampling::Area | LightSampling::SolidAngle => None,
+    }
+}
+
+/// A direction (local frame) drawn from `directions` at a vertex of `brdf`
+/// seen from `wo`, with f cos θ / pdf and its pdf; `None` if it reflects
+/// nothing. The numbers come from `stream`'s direction pair, read only if
+/// the routine uses it (a mirror does not).
+#[inline(always)]
+fn draw_direction(
+    brdf: &Brdf,
+    wo: Vec3,
+    directions: Directions,
+    stream: &SampleStream,
+    direction_dimension: u32,
+) -> Option<BrdfSample> {
+    let (wi, pdf) = match directions {
+        Directions::Brdf => {
+            let u = if brdf.is_delta() {
+                glam::Vec2::ZERO
+            } else {
+                stream.uniform2(direction_dimension)
+            };
+            return brdf.sample(wo, u);
+        }
+        Directions::Uniform => (
+            uniform_hemisphere(stream.uniform2(direction_dimension)),
+            UNIFORM_HEMISPHERE_PDF,
+        ),
+        Directions::Cosine => {
+            let wi = cosine_hemisphere(stream.uniform2(direction_dimension));
+            (wi, cosine_hemisphere_pdf(wi.z))
+        }
+    };
+    let f = brdf.eval(wo, wi);
+    if pdf <= 0.0 || f.max_element() <= 0.0 {
+        return None;
+    }
+    Some(BrdfSample {
+        wi,
+        weight: f * wi.z / pdf,
+        pdf,
+        delta: false,
+    })
+}
+
+/// Index of the first selected term with `reflections` reflections or more.
+fn lowest_selected(terms: TermSet, reflections: u32) -> usize {
+    let from = Term::of_reflections(reflections);
+    terms.iter().find(|&t| t >= from).unwrap_or(from).index()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_guard_zeroes_invalid_terms_and_counts_the_sample_once() {
+        let mut counts = RayCounts::default();
+        let valid = [Vec3::ZERO, Vec3::new(0.5, 1.0, 2.0), Vec3::ONE, Vec3::ZERO];
+        assert_eq!(guard_sample(valid, &mut counts), valid);
+        assert_eq!(counts.invalid_samples, 0);
+        let invalid = [
+            Vec3::new(f32::INFINITY, 0.0, 0.0),
+            Vec3::new(0.5, f32::NAN, 2.0),
+            Vec3::ONE,
+            Vec3::new(0.0, -1e-9, 0.0),
+        ];
+        let guarded = guard_sample(invalid, &mut counts);
+        assert_eq!(guarded, [Vec3::ZERO, Vec3::ZERO, Vec3::ONE, Vec3::ZERO]);
+        assert_eq!(counts.invalid_samples, 1);
+    }
+}

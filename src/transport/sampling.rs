@@ -1,0 +1,818 @@
+//! Random numbers and the warps that turn them into samples.
+//!
+//! **Random numbers.** A sample's numbers are a pure function of
+//! (sampler, seed, pixel, sample index, dimension): no state is carried
+//! between calls, so the image does not depend on which thread renders which
+//! pixel, and skipping a computation (a term switched off) does not shift the
+//! numbers used by the others: each use has its own fixed dimension ([`dim`]).
+//! Three samplers ([`Sampler`]) produce them:
+//!
+//! * **independent** — a hash of (seed, pixel, sample, dimension): plain
+//!   Monte Carlo, error ∝ 1/√N.
+//! * **stratified** (jittered) — sample indices go in blocks of 16. Within a
+//!   block, a pair `uniform2(d)` puts one point in each cell of a 4 × 4 grid,
+//!   and a single `uniform(d)` one number in each sixteenth of [0, 1): a
+//!   per-(pixel, block, dimension) permutation of the strata (Kensler's hashed
+//!   permutation, then a random xor), plus a hashed jitter inside the stratum.
+//!   The variance of a smooth integrand drops fully at multiples of 16 samples.
+//! * **Sobol** — padded Owen-scrambled Sobol points (Burley 2020, the
+//!   `sobol_burley` crate; pbrt-v4's `PaddedSobolSampler`): each dimension
+//!   read alone, and each pair read by `uniform2`, has its own 2D sequence
+//!   made of Sobol's first two dimensions (a (0, 2)-sequence: every 2^k
+//!   consecutive aligned samples fill each elementary interval of area 2^−k
+//!   once), under a scramble and an index shuffle hashed from the seed, the
+//!   pixel and the dimension. The shuffle keeps aligned blocks together, so
+//!   every pair stays stratified, and decorrelates the pairs. (One sequence
+//!   over all dimensions, dimension d being Sobol dimension d, stratified
+//!   the high dimensions' pairs poorly: it barely beat independent numbers.)
+//!   Past the 2^16 points of a sequence, the samples continue in a sequence
+//!   of another scramble.
+//!
+//! **Why every estimator stays unbiased.** Each number taken alone is uniform
+//! on [0, 1) over the random scramble, whatever its sample index: a stratum
+//! permutation followed by a random xor puts any slot in any stratum with
+//! probability 1/16 before the uniform jitter, and Owen scrambling makes each
+//! point of a net uniform. Each sample therefore estimates the integral
+//! without bias, and so does any prefix of samples: a progressive render may
+//! stop anywhere, not only at a multiple of 16 or at a power of two. The
+//! samplers only make the errors of a pixel's samples cancel better.
+//!
+//! **Repetitions.** The j-th of N repeated uses within sample n (light samples,
+//! continuations) reads [`SampleStream::split`]: for the stratified and Sobol
+//! samplers it is sample n·N + j of the same dimensions, so N light samples
+//! per pixel sample are N consecutive, well-spread points.
+//!
+//! **Warps.** Each maps the unit square to a domain with a known density:
+//!
+//! | warp | domain | pdf |
+//! |---|---|---|
+//! | [`cosine_hemisphere`] | directions, z ≥ 0 | cos θ / π (solid angle) |
+//! | [`uniform_hemisphere`] | directions, z ≥ 0 | 1 / 2π |
+//! | [`uniform_sphere`] | all directions | 1 / 4π |
+//! | [`uniform_cone`] | directions within θmax of +z | 1 / (2π (1 − cos θmax)) |
+//! | [`phong_lobe`] | directions around +z | (n + 1)/(2π) cosⁿ α |
+//! | [`uniform_triangle`] | barycentrics | 1 / area |
+//! | [`spherical_triangle`] | directions towards a triangle | 1 / Ω (solid angle) |
+//! | [`concentric_disk`] | the unit disk | 1 / π |
+//!
+//! [`AliasTable`] picks an index in proportion to given weights in O(1).
+//!
+//! **Spherical triangles** (Arvo 1995). The directions from a point towards
+//! a triangle's vertices, a, b, c, bound a spherical triangle of area (solid
+//! angle) Ω = α + β + γ − π, α, β, γ its angles, or, better conditioned,
+//! tan(Ω/2) = |a·(b×c)| / (1 + a·b + b·c + c·a) (Van Oosterom and Strackee
+//! 1983). [`spherical_triangle`] draws directions uniformly inside it: u₀
+//! picks the sub-triangle a b ĉ of area u₀·Ω (ĉ on the arc from a to c), u₁ a
+//! point on the arc from b to ĉ with the density that makes the whole uniform.
+
+use glam::{DVec3, Vec2, Vec3};
+use std::f32::consts::PI;
+
+use crate::render::settings::Sampler;
+
+/// Fixed dimensions of a sample: each use of a random number has its own.
+///
+/// Uses repeated within one sample (the j-th of N light samples, the m-th of
+/// M continuations) do not get new dimensions: they read the same dimensions
+/// of a sub-stream, [`SampleStream::split`], so a quasi-random sampler sees
+/// them as N (or M) consecutive points of the same low dimensions.
+pub mod dim {
+    /// Position inside the pixel (2D).
+    pub const PIXEL: u32 = 0;
+    /// Dimensions used at path vertex `vertex` start at `vertex_base(vertex)`.
+    pub const PER_VERTEX: u32 = 8;
+    /// Which light a light sample picks, in scenes of too many lights for
+    /// the position pair to pick it (`LightTable::pick_with_position`).
+    pub const LIGHT_SELECT: u32 = 0;
+    /// Where on the light (2D); with few lights, also which light.
+    pub const LIGHT_POSITION: u32 = 1;
+    /// Direction gathered to find lights (2D); with a Phong BRDF, also its lobe.
+    pub const GATHER_DIRECTION: u32 = 3;
+    /// Direction of the next reflection (2D); with a Phong BRDF, also its lobe.
+    pub const BRDF_DIRECTION: u32 = 5;
+    pub const RUSSIAN_ROULETTE: u32 = 7;
+
+    /// First dimension of path vertex `vertex` (0 = the first surface hit).
+    pub const fn vertex_base(vertex: u32) -> u32 {
+        2 + vertex * PER_VERTEX
+    }
+}
+
+/// SplitMix64's finaliser: a fast, well-mixing 64-bit hash.
+#[inline]
+pub(crate) fn mix64(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// Odd constants that spread small integers over 64 bits before hashing.
+const SAMPLE_SPREAD: u64 = 0x9e37_79b9_7f4a_7c15;
+const DIMENSION_SPREAD: u64 = 0xd1b5_4a32_d192_ed03;
+
+/// The hash of (key, dimension): what the numbers of one dimension hang on.
+#[inline]
+fn dimension_key(key: u64, dimension: u32) -> u64 {
+    mix64(key ^ (dimension as u64 + 1).wrapping_mul(DIMENSION_SPREAD))
+}
+
+/// `bits` in [0, 2²⁴) as a number in [0, 1): exact, never 1.0.
+#[inline]
+fn unit_from_24_bits(bits: u64) -> f32 {
+    bits as f32 * (1.0 / (1u64 << 24) as f32)
+}
+
+/// Sample indices per block of the stratified sampler; a power of two.
+pub const STRATIFIED_BLOCK: u64 = 16;
+/// Side of the stratified sampler's 2D grid: `STRATIFIED_GRID²` = [`STRATIFIED_BLOCK`].
+pub const STRATIFIED_GRID: u32 = 4;
+/// Sample indices of one Owen-scrambled Sobol sequence (the crate's limit);
+/// later indices continue in a sequence of another scramble.
+const SOBOL_SEQUENCE_LENGTH: u64 = 1 << 16;
+
+/// The random numbers of one sample of one pixel.
+#[derive(Clone, Copy, Debug)]
+pub struct SampleStream {
+    sampler: Sampler,
+    /// Independent: the hash of (seed, pixel, sample, splits). Others: the
+    /// hash of (seed, pixel), which scrambles the pixel's points.
+    key: u64,
+    /// Others than independent: the sample index, splits folded in (n·N + j).
+    index: u64,
+    /// Sobol: the index's point in its sequence, bits reversed (the form
+    /// every dimension's shuffle reads, reversed once here).
+    point_rev: u32,
+}
+
+impl SampleStream {
+    /// Sample `sample` of pixel `pixel`, with independent numbers.
+    pub fn new(seed: u64, pixel: u64, sample: u64) -> Self {
+        Self::with_sampler(Sampler::Independent, seed, pixel, sample)
+    }
+
+    /// Sample `sample` of pixel `pixel`, with the numbers of `sampler`.
+    pub fn with_sampler(sampler: Sampler, seed: u64, pixel: u64, sample: u64) -> Self {
+        let pixel_key = mix64(mix64(seed ^ 0x5851_f42d_4c95_7f2d) ^ pixel);
+        match sampler {
+            Sampler::Independent => Self {
+                sampler,
+                key: mix64(pixel_key ^ sample.wrapping_mul(SAMPLE_SPREAD)),
+                index: 0,
+                point_rev: 0,
+            },
+            Sampler::Stratified | Sampler::Sobol => Self {
+                sampler,
+                key: pixel_key,
+                index: sample,
+                point_rev: sobol_point_rev(sample),
+            },
+        }
+    }
+
+    pub fn sampler(&self) -> Sampler {
+        self.sampler
+    }
+
+    /// The stream of repetition `index` of `count` within this sample (the
+    /// j-th light sample, the m-th continuation); repetition 0 of 1 is `self`.
+    ///
+    /// Stratified and Sobol read repetition j of sample n as sample n·N + j,
+    /// so the N repetitions are N consecutive points of the same dimensions.
+    pub fn split(&self, index: u32, count: u32) -> SampleStream {
+        if count <= 1 {
+            return *self;
+        }
+        match self.sampler {
+            Sampler::Independent => Self {
+                key: mix64(self.key ^ mix64((index as u64) << 32 | count as u64)),
+                ..*self
+            },
+            Sampler::Stratified | Sampler::Sobol => {
+                let index = self
+                    .index
+                    .wrapping_mul(count as u64)
+                    .wrapping_add(index as u64);
+                Self {
+                    index,
+                    point_rev: sobol_point_rev(index),
+                    ..*self
+                }
+            }
+        }
+    }
+
+    /// A number in [0, 1) for dimension `dimension`.
+    #[inline]
+    pub fn uniform(&self, dimension: u32) -> f32 {
+        match self.sampler {
+            Sampler::Independent => self.independent(dimension),
+            Sampler::Stratified => self.stratified(dimension),
+            Sampler::Sobol => self.sobol(dimension),
+        }
+    }
+
+    /// A point in [0, 1)² for the dimension pair `dimension`, `dimension + 1`:
+    /// (`uniform(dimension)`, `uniform(dimension + 1)`) for independent
+    /// numbers; the stratified and Sobol samplers stratify the pair jointly
+    /// (so a dimension is read either alone or as part of one pair, never both).
+    #[inline]
+    pub fn uniform2(&self, dimension: u32) -> Vec2 {
+        match self.sampler {
+            Sampler::Independent => {
+                Vec2::new(self.independent(dimension), self.independent(dimension + 1))
+            }
+            Sampler::Stratified => self.stratified2(dimension),
+            Sampler::Sobol => self.sobol2(dimension),
+        }
+    }
+
+    #[inline]
+    fn independent(&self, dimension: u32) -> f32 {
+        // 24 random bits: every value exactly representable, never 1.0
+        unit_from_24_bits(dimension_key(self.key, dimension) >> 40)
+    }
+
+    /// Which of the [`STRATIFIED_BLOCK`] strata this sample takes in its block,
+    /// and 64 bits of jitter.
+    #[inline]
+    fn stratum_and_jitter(&self, dimension: u32) -> (u32, u64) {
+        let key = dimension_key(self.key, dimension);
+        let block = self.index / STRATIFIED_BLOCK;
+        let slot = (self.index % STRATIFIED_BLOCK) as u32;
+        let shuffle = mix64(key ^ block.wrapping_mul(SAMPLE_SPREAD));
+        // a permutation of the slots, then a random xor: whatever the
+        // permutation, each slot lands in each stratum with probability 1/16
+        let stratum = permute_16(slot, shuffle as u32) ^ (shuffle >> 60) as u32;
+        let jitter = mix64(key ^ mix64(self.index));
+        (stratum, jitter)
+    }
+
+    /// Stratum of 1/16 of [0, 1), jittered.
+    #[inline]
+    fn stratified(&self, dimension: u32) -> f32 {
+        let (stratum, jitter) = self.stratum_and_jitter(dimension);
+        unit_from_24_bits((stratum as u64) << 20 | jitter >> 44)
+    }
+
+    /// Cell of the 4×4 grid, jittered.
+    #[inline]
+    fn stratified2(&self, dimension: u32) -> Vec2 {
+        let (stratum, jitter) = self.stratum_and_jitter(dimension);
+        let (column, row) = (stratum % STRATIFIED_GRID, stratum / STRATIFIED_GRID);
+        let low_22 = (1u64 << 22) - 1;
+        Vec2::new(
+            unit_from_24_bits((column as u64) << 22 | jitter >> 42),
+            unit_from_24_bits((row as u64) << 22 | jitter & low_22),
+        )
+    }
+
+    /// This sample's number in the Owen-scrambled Sobol sequence of
+    /// dimension `dimension` (padded sampling, pbrt-v4's
+    /// `PaddedSobolSampler`): every dimension, or pair of dimensions read
+    /// together, has a sequence of its own, made of
+    /// Sobol's first two dimensions (a (0, 2)-sequence, the best-stratified
+    /// pair) under a scramble and an index shuffle of its own. The shuffle
+    /// keeps aligned blocks of 2^k indices together, so each block still
+    /// stratifies every pair, and decorrelates the dimensions from one
+    /// another (the higher Sobol dimensions' 2D projections are poorly
+    /// stratified: one 30-dimensional sequence barely beat independent
+    /// numbers on the Cornell box).
+    #[inline]
+    fn sobol(&self, dimension: u32) -> f32 {
+        let (point, scramble) = self.sobol_point(dimension);
+        sobol_0(point, scramble)
+    }
+
+    /// [`SampleStream::sobol`] for a pair: Sobol's dimensions 0 and 1 under
+    /// one index shuffle for both.
+    ///
+    /// The pixel pair and the first light sample get a sequence each too.
+    /// Taking them as Sobol's dimensions 0–3 of one sequence, to stratify
+    /// direct lighting jointly, cut the RMSE of the Cornell box's L1 at
+    /// 64 spp by a tenth, but dimensions 2 and 3 are no (0, 2)-sequence: at
+    /// 8 spp its relMSE was 3.7 times this one's.
+    #[inline]
+    fn sobol2(&self, dimension: u32) -> Vec2 {
+        let (point, scramble) = self.sobol_point(dimension);
+        Vec2::from(sobol_pair(point, scramble))
+    }
+
+    /// The point index in its sequence (bits reversed), and the scrambles of `dimension`'s
+    /// sequence: one hash of (pixel key, dimension, sequence).
+    #[inline]
+    fn sobol_point(&self, dimension: u32) -> (u32, SobolScrambles) {
+        let sequence = self.index / SOBOL_SEQUENCE_LENGTH;
+        let hash = mix64(
+            self.key
+                ^ (dimension as u64 + 1).wrapping_mul(DIMENSION_SPREAD)
+                ^ sequence.wrapping_mul(SAMPLE_SPREAD),
+        );
+        (self.point_rev, SobolScrambles::of(hash))
+    }
+}
+
+/// Sample `index`'s point in its Sobol sequence, bits reversed.
+#[inline]
+fn sobol_point_rev(index: u64) -> u32 {
+    ((index % SOBOL_SEQUENCE_LENGTH) as u32).reverse_bits()
+}
+
+/// Sobol's dimensions 0 and 1 in `sobol_burley`'s reversed-bit form, per
+/// byte of the 16-bit point index: `[dimension][byte][value]`, byte 0 the
+/// index's top byte (in reversed form). The generator matrices are linear
+/// over GF(2), so a point's value is the XOR of its two bytes' values: two
+/// look-ups instead of the crate's loop over the index's set bits, which
+/// was most of the padded sampler's cost. Built once (4 KiB) from the
+/// crate's own `parts::sobol_rev`.
+static SOBOL_BY_BYTE: std::sync::LazyLock<[[[u32; 256]; 2]; 2]> = std::sync::LazyLock::new(|| {
+    let mut tables = [[[0; 256]; 2]; 2];
+    for (dimension, by_byte) in tables.iter_mut().enumerate() {
+        for (byte, values) in by_byte.iter_mut().enumerate() {
+            for (value, entry) in values.iter_mut().enumerate() {
+                let index_rev = (value as u32) << (24 - 8 * byte);
+                *entry = sobol_burley::parts::sobol_rev(index_rev, dimension as u32);
+            }
+        }
+    }
+    tables
+});
+
+/// The three scrambles of one dimension's sequence: the index shuffle and
+/// the Owen scramble of each of Sobol's dimensions 0 and 1, cut from one
+/// 64-bit hash (`sobol_burley::sample_4d` hashes a 32-bit seed three times
+/// instead).
+#[derive(Clone, Copy, Debug)]
+struct SobolScrambles {
+    shuffle: u32,
+    lanes: [u32; 2],
+}
+
+impl SobolScrambles {
+    #[inline(always)]
+    fn of(hash: u64) -> Self {
+        Self {
+            shuffle: (hash >> 32) as u32,
+            lanes: [hash as u32, (hash.wrapping_mul(SAMPLE_SPREAD) >> 32) as u32],
+        }
+    }
+}
+
+/// The two bytes (top first) of point `index_rev` (bits reversed) after the
+/// index shuffle, in reversed-bit form: the look-up keys of [`SOBOL_BY_BYTE`].
+#[inline(always)]
+fn shuffled_bytes(index_rev: u32, scrambles: SobolScrambles) -> (usize, usize) {
+    use sobol_burley::parts::owen_scramble_rev;
+    let shuffled = owen_scramble_rev(index_rev, scrambles.shuffle);
+    ((shuffled >> 24) as usize, (shuffled >> 16 & 0xff) as usize)
+}
+
+/// Owen-scrambles Sobol dimension `lane` (0 or 1), given in reversed-bit form.
+#[inline(always)]
+fn scrambled_lane(sobol_rev: u32, scrambles: SobolScrambles, lane: usize) -> f32 {
+    use sobol_burley::parts::{owen_scramble_rev, u32_to_f32_norm};
+    u32_to_f32_norm(owen_scramble_rev(sobol_rev, scrambles.lanes[lane]).reverse_bits())
+}
+
+/// Point `index_rev` (bits reversed) of Sobol's dimension 0 under `scrambles`, by table.
+#[inline]
+fn sobol_0(index_rev: u32, scrambles: SobolScrambles) -> f32 {
+    let (high, low) = shuffled_bytes(index_rev, scrambles);
+    let by_byte = &SOBOL_BY_BYTE[0];
+    scrambled_lane(by_byte[0][high] ^ by_byte[1][low], scrambles, 0)
+}
+
+/// Point `index_rev` (bits reversed) of Sobol's dimensions 0 and 1 under `scrambles`, by table.
+#[inline]
+fn sobol_pair(index_rev: u32, scrambles: SobolScrambles) -> [f32; 2] {
+    let (high, low) = shuffled_bytes(index_rev, scrambles);
+    let tables = &*SOBOL_BY_BYTE;
+    let lane = |d: usize| scrambled_lane(tables[d][0][high] ^ tables[d][1][low], scrambles, d);
+    [lane(0), lane(1)]
+}
+
+/// A permutation of 0..16 chosen by `seed` (Kensler 2013, "Correlated
+/// Multi-Jittered Sampling", for a power-of-two length): each step is
+/// invertible on the low four bits.
+#[inline]
+fn permute_16(mut i: u32, seed: u32) -> u32 {
+    const MASK: u32 = 15;
+    i ^= seed;
+    i = i.wrapping_mul(0xe170_893d);
+    i ^= seed >> 16;
+    i ^= seed >> 8;
+    i = i.wrapping_mul(0x0929_eb3f);
+    i ^= seed >> 23;
+    i ^= (i & MASK) >> 1;
+    i = i.wrapping_mul(1 | seed >> 27);
+    i = i.wrapping_mul(0x6935_fa69);
+    i = i.wrapping_mul(0x74dc_b303);
+    i ^= (i & MASK) >> 2;
+    i = i.wrapping_mul(0x9e50_1cc3);
+    i ^= (i & MASK) >> 2;
+    i = i.wrapping_mul(0xc860_a3df);
+    (i.wrapping_add(seed)) & MASK
+}
+
+/// Cosine-weighted direction on the hemisphere z ≥ 0 (Malley: a uniform disk point lifted).
+pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
+    let d = concentric_disk(u);
+    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
+    Vec3::new(d.x, d.y, z)
+}
+
+/// Density of [`cosine_hemisphere`] w.r.t. solid angle.
+pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
+    cos_theta.max(0.0) / PI
+}
+
+/// Uniform direction on the hemisphere z ≥ 0.
+pub fn uniform_hemisphere(u: Vec2) -> Vec3 {
+    let z = u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let (cos_phi, sin_phi) = cos_sin_turn(u.y);
+    Vec3::new(r * cos_phi, r * sin_phi, z)
+}
+
+pub const UNIFORM_HEMISPHERE_PDF: f32 = 1.0 / (2.0 * PI);
+
+/// Uniform direction on the unit sphere.
+pub fn uniform_sphere(u: Vec2) -> Vec3 {
+    let z = 1.0 - 2.0 * u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let (cos_phi, sin_phi) = cos_sin_turn(u.y);
+    Vec3::new(r * cos_phi, r * sin_phi, z)
+}
+
+pub const UNIFORM_SPHERE_PDF: f32 = 1.0 / (4.0 * PI);
+
+/// Uniform direction inside the cone of half-angle θmax around +z, given
+/// 1 − cos θmax (passed as such: it is tiny for small cones and 1 − cos loses it).
+pub fn uniform_cone(u: Vec2, one_minus_cos_max: f32) -> Vec3 {
+    let one_minus_cos = u.x * one_minus_cos_max;
+    let cos_theta = 1.0 - one_minus_cos;
+    // sin²θ = (1 − cos θ)(1 + cos θ): exact for tiny cones, where 1 − cos²θ
+    // would leave sin θ only a handful of values
+    let sin_theta = (one_minus_cos * (2.0 - one_minus_cos)).max(0.0).sqrt();
+    let (cos_phi, sin_phi) = cos_sin_turn(u.y);
+    Vec3::new(sin_theta * cos_phi, sin_theta * sin_phi, cos_theta)
+}
+
+/// Density of [`uniform_cone`] w.r.t. solid angle.
+pub fn uniform_cone_pdf(one_minus_cos_max: f32) -> f32 {
+    1.0 / (2.0 * PI * one_minus_cos_max)
+}
+
+/// Direction around +z with density ∝ cosⁿ α (α the angle to +z).
+pub fn phong_lobe(u: Vec2, exponent: f32) -> Vec3 {
+    let cos_alpha = u.x.powf(1.0 / (exponent + 1.0));
+    let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
+    let (cos_phi, sin_phi) = cos_sin_turn(u.y);
+    Vec3::new(sin_alpha * cos_phi, sin_alpha * sin_phi, cos_alpha)
+}
+
+/// Density of [`phong_lobe`] w.r.t. solid angle, given cos α.
+pub fn phong_lobe_pdf(cos_alpha: f32, exponent: f32) -> f32 {
+    if cos_alpha <= 0.0 {
+        0.0
+    } else {
+        (exponent + 1.0) / (2.0 * PI) * cos_alpha.powf(exponent)
+    }
+}
+
+/// Uniform point on a triangle, as barycentrics (b0, b1, b2) (Heitz's low-distortion warp).
+pub fn uniform_triangle(u: Vec2) -> Vec3 {
+    let (b0, b1) = if u.x < u.y {
+        let b0 = u.x / 2.0;
+        (b0, u.y - b0)
+    } else {
+        let b1 = u.y / 2.0;
+        (u.x - b1, b1)
+    };
+    Vec3::new(b0, b1, 1.0 - b0 - b1)
+}
+
+/// Solid angle (sr) of the spherical triangle of unit directions `a`, `b`,
+/// `c` (Van Oosterom–Strackee): 0 for a degenerate triangle, at most 2π.
+pub fn spherical_triangle_area(a: DVec3, b: DVec3, c: DVec3) -> f64 {
+    let triple = a.dot(b.cross(c)).abs();
+    2.0 * triple.atan2(1.0 + a.dot(b) + b.dot(c) + c.dot(a))
+}
+
+/// Uniform direction inside the spherical triangle of unit directions `a`,
+/// `b`, `c` (Arvo's method, in f64), with its density 1/Ω w.r.t. solid
+/// angle (Ω from [`spherical_triangle_area`]). `None` for a degenerate triangle.
+pub fn spherical_triangle(a: DVec3, b: DVec3, c: DVec3, u: Vec2) -> Option<(DVec3, f64)> {
+    let solid_angle = spherical_triangle_area(a, b, c);
+    // the planes through the origin and each side; the angles between them
+    let (n_ab, n_bc, n_ca) = (a.cross(b), b.cross(c), c.cross(a));
+    if n_ab.length_squared() == 0.0 || n_bc.length_squared() == 0.0 || n_ca.length_squared() == 0.0
+    {
+        return None;
+    }
+    let (n_ab, n_bc, n_ca) = (n_ab.normalize(), n_bc.normalize(), n_ca.normalize());
+    let alpha = angle_between(n_ab, -n_ca);
+    let beta = angle_between(n_bc, -n_ab);
+    let gamma = angle_between(n_ca, -n_bc);
+    let angle_excess = alpha + beta + gamma - std::f64::consts::PI;
+
+    // the sub-triangle a b ĉ of area u₀·Ω: cos of its side from a to ĉ
+    let sub_area = u.x as f64 * angle_excess;
+    let (s, t) = (sub_area - alpha).sin_cos();
+    let (sin_alpha, cos_alpha) = alpha.sin_cos();
+    let k_u = t - cos_alpha;
+    let k_v = s + sin_alpha * a.dot(b);
+    let cos_side = ((k_v * t - k_u * s) * cos_alpha - k_v) / ((k_v * s + k_u * t) * sin_alpha);
+    if !cos_side.is_finite() || solid_angle <= 0.0 {
+        return None;
+    }
+    let cos_side = cos_side.clamp(-1.0, 1.0);
+    let c_hat = cos_side * a + (1.0 - cos_side * cos_side).max(0.0).sqrt() * orthogonal_part(c, a);
+
+    // a point on the arc from b to ĉ, cos θ to b uniform in [ĉ·b, 1]
+    let cos_theta = 1.0 - u.y as f64 * (1.0 - c_hat.dot(b));
+    let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
+    let direction = cos_theta * b + sin_theta * orthogonal_part(c_hat, b);
+    Some((direction.normalize(), 1.0 / solid_angle))
+}
+
+/// The unit part of `v` orthogonal to unit `axis` (zero if `v` is along it).
+fn orthogonal_part(v: DVec3, axis: DVec3) -> DVec3 {
+    (v - v.dot(axis) * axis).normalize_or_zero()
+}
+
+/// Angle between unit vectors, accurate near 0 and π (unlike acos of the dot).
+fn angle_between(v1: DVec3, v2: DVec3) -> f64 {
+    if v1.dot(v2) < 0.0 {
+        std::f64::consts::PI - 2.0 * ((v1 + v2).length() / 2.0).min(1.0).asin()
+    } else {
+        2.0 * ((v2 - v1).length() / 2.0).min(1.0).asin()
+    }
+}
+
+/// Uniform point on the unit disk (Shirley–Chiu concentric map).
+pub fn concentric_disk(u: Vec2) -> Vec2 {
+    let o = 2.0 * u - Vec2::ONE;
+    if o == Vec2::ZERO {
+        return Vec2::ZERO;
+    }
+    // θ = π/4 · y/x nearer the x axis, π/2 − π/4 · x/y nearer the y axis,
+    // whose cosine and sine are the sine and cosine of π/4 · x/y
+    let near_x = o.x.abs() > o.y.abs();
+    let (r, across) = if near_x { (o.x, o.y) } else { (o.y, o.x) };
+    let (sin, cos) = sin_cos_octant(PI / 4.0 * (across / r));
+    let (along_x, along_y) = if near_x { (cos, sin) } else { (sin, cos) };
+    r * Vec2::new(along_x, along_y)
+}
+
+/// (sin x, cos x) for |x| ≤ π/4, within two ulps there: the minimax
+/// polynomials of Cephes' `sinf` and `cosf`. The warps' angles need no
+/// general range reduction, which libm's `sincosf` spent a tenth of the
+/// warps' time on.
+#[inline(always)]
+pub fn sin_cos_octant(x: f32) -> (f32, f32) {
+    let x2 = x * x;
+    let sin = x + x * x2 * (-1.666_665_5e-1 + x2 * (8.332_161e-3 + x2 * -1.951_529_6e-4));
+    let cos_tail = 4.166_664_6e-2 + x2 * (-1.388_731_6e-3 + x2 * 2.443_315_7e-5);
+    let cos = 1.0 - 0.5 * x2 + x2 * x2 * cos_tail;
+    (sin, cos)
+}
+
+/// (cos φ, sin φ) of φ = 2π·u, u in [0, 1]: the nearest quarter turn q,
+/// then [`sin_cos_octant`] of the rest, rotated by q quarter turns.
+#[inline(always)]
+pub fn cos_sin_turn(u: f32) -> (f32, f32) {
+    let quarters = u * 4.0;
+    // u ≥ 0: truncation rounds down
+    let q = (quarters + 0.5) as u32;
+    let (sin, cos) = sin_cos_octant((quarters - q as f32) * (PI / 2.0));
+    // turns 0..3: (c, s), (−s, c), (−c, −s), (s, −c)
+    let (cos_phi, sin_phi) = if q & 1 == 0 { (cos, sin) } else { (sin, cos) };
+    let negate = |v: f32, yes: bool| f32::from_bits(v.to_bits() ^ (yes as u32) << 31);
+    (
+        negate(cos_phi, (q + 1) & 2 != 0),
+        negate(sin_phi, q & 2 != 0),
+    )
+}
+
+/// The power heuristic (β = 2) weight of a strategy of density `pdf_a` against `pdf_b`.
+pub fn power_heuristic(pdf_a: f32, pdf_b: f32) -> f32 {
+    let (a, b) = (pdf_a * pdf_a, pdf_b * pdf_b);
+    if a == 0.0 {
+        0.0
+    } else if !(a + b).is_finite() {
+        // one density overflowed: the larger one takes all the weight
+        if pdf_a >= pdf_b { 1.0 } else { 0.0 }
+    } else {
+        a / (a + b)
+    }
+}
+
+/// The balance heuristic weight of a strategy of density `pdf_a` against `pdf_b`.
+pub fn balance_heuristic(pdf_a: f32, pdf_b: f32) -> f32 {
+    if pdf_a == 0.0 {
+        0.0
+    } else if !(pdf_a + pdf_b).is_finite() {
+        if pdf_a >= pdf_b { 1.0 } else { 0.0 }
+    } else {
+        pdf_a / (pdf_a + pdf_b)
+    }
+}
+
+/// The largest f32 below 1.
+const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+
+/// Walker's alias method: picks index i with probability wᵢ / Σw in O(1).
+#[derive(Clone, Debug, Default)]
+pub struct AliasTable {
+    /// Probability of keeping bin i rather than taking its alias.
+    keep: Vec<f32>,
+    alias: Vec<u32>,
+    /// Normalised probability of each index.
+    pmf: Vec<f32>,
+}
+
+impl AliasTable {
+    /// Builds the table; negative and non-finite weights count as zero.
+    /// All-zero (or empty) weights give an empty table that picks nothing.
+    pub fn new(weights: &[f32]) -> Self {
+        let clean: Vec<f64> = weights
+            .iter()
+            .map(|&w| {
+                if w.is_finite() && w > 0.0 {
+                    w as f64
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let total: f64 = clean.iter().sum();
+        if total <= 0.0 {
+            return Self::default();
+        }
+        let n = clean.len();
+        let pmf: Vec<f32> = clean.iter().map(|w| (w / total) as f32).collect();
+        let mut scaled: Vec<f64> = clean.iter().map(|w| w / total * n as f64).collect();
+        let mut keep = vec![1.0f32; n];
+        let mut alias: Vec<u32> = (0..n as u32).collect();
+        let (mut small, mut large): (Vec<usize>, Vec<usize>) =
+            (0..n).partition(|&i| scaled[i] < 1.0);
+        while let (Some(s), Some(&l)) = (small.pop(), large.last()) {
+            keep[s] = scaled[s] as f32;
+            alias[s] = l as u32;
+            scaled[l] -= 1.0 - scaled[s];
+            if scaled[l] < 1.0 {
+                large.pop();
+                small.push(l);
+            }
+        }
+        // leftovers are 1 up to rounding
+        Self { keep, alias, pmf }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.pmf.is_empty()
+    }
+
+    /// Picks an index from one uniform number in [0, 1); returns it with its probability.
+    pub fn sample(&self, u: f32) -> Option<(usize, f32)> {
+        self.sample_remapped(u)
+            .map(|(index, probability, _)| (index, probability))
+    }
+
+    /// [`AliasTable::sample`], plus `u` remapped to a fresh uniform number
+    /// in [0, 1) (pbrt-v4's `uRemapped`): `u` falls in one interval of
+    /// [0, 1) per (bin, keep or alias), and its position inside that
+    /// interval, rescaled, is uniform whichever index the interval picks.
+    /// The map is monotone on each interval, so stratified numbers stay
+    /// stratified: a second number for free, with the bits `u` had beyond
+    /// the choice (log₂ n fewer).
+    pub fn sample_remapped(&self, u: f32) -> Option<(usize, f32, f32)> {
+        if self.pmf.is_empty() {
+            return None;
+        }
+        let n = self.pmf.len();
+        let scaled = u * n as f32;
+        let bin = (scaled as usize).min(n - 1);
+        let frac = (scaled - bin as f32).clamp(0.0, ONE_MINUS_EPSILON);
+        let keep = self.keep[bin];
+        let (index, remapped) = if frac < keep {
+            (bin, frac / keep)
+        } else {
+            (self.alias[bin] as usize, (frac - keep) / (1.0 - keep))
+        };
+        Some((index, self.pmf[index], remapped.min(ONE_MINUS_EPSILON)))
+    }
+
+    /// Probability of picking `index`.
+    pub fn pmf(&self, index: usize) -> f32 {
+        self.pmf.get(index).copied().unwrap_or(0.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_polynomial_sines_and_cosines_are_within_two_ulps_of_one() {
+        let worst = |f: &dyn Fn(f64) -> (f32, f32, f64, f64), n: usize| {
+            (0..=n).fold(0.0f64, |worst, i| {
+                let (sin, cos, exact_sin, exact_cos) = f(i as f64 / n as f64);
+                let error = (sin as f64 - exact_sin)
+                    .abs()
+                    .max((cos as f64 - exact_cos).abs());
+                worst.max(error)
+            })
+        };
+        let octant = worst(
+            &|t| {
+                let x = ((2.0 * t - 1.0) * std::f64::consts::FRAC_PI_4) as f32;
+                let (sin, cos) = sin_cos_octant(x);
+                (sin, cos, (x as f64).sin(), (x as f64).cos())
+            },
+            100_000,
+        );
+        let turn = worst(
+            &|u| {
+                let u = u as f32;
+                let (cos, sin) = cos_sin_turn(u);
+                let phi = std::f64::consts::TAU * u as f64;
+                (sin, cos, phi.sin(), phi.cos())
+            },
+            100_000,
+        );
+        // an ulp of 1 is 2^-23 (1.2e-7)
+        assert!(octant < 2.4e-7, "octant: {octant:e}");
+        assert!(turn < 2.4e-7, "turn: {turn:e}");
+        // the quarter turns themselves are exact
+        assert_eq!(cos_sin_turn(0.0), (1.0, 0.0));
+        assert_eq!(cos_sin_turn(0.25), (0.0, 1.0));
+        assert_eq!(cos_sin_turn(0.5), (-1.0, 0.0));
+        assert_eq!(cos_sin_turn(1.0), (1.0, 0.0));
+    }
+
+    #[test]
+    fn the_table_sobol_is_the_crates_loop_bit_for_bit() {
+        use sobol_burley::parts::{owen_scramble_rev, sobol_rev, u32_to_f32_norm};
+        for hash in [0, 1, 0x9e37_79b9_7f4a_7c15, u64::MAX] {
+            let scrambles = SobolScrambles::of(hash);
+            for index in (0u32..1 << 16).step_by(7).chain([0xffff, 0x8000, 0x00ff]) {
+                let shuffled = owen_scramble_rev(index.reverse_bits(), scrambles.shuffle);
+                let reference = [0, 1].map(|d| {
+                    let rev = owen_scramble_rev(sobol_rev(shuffled, d as u32), scrambles.lanes[d]);
+                    u32_to_f32_norm(rev.reverse_bits())
+                });
+                let pair = sobol_pair(index.reverse_bits(), scrambles);
+                assert_eq!(
+                    pair.map(f32::to_bits),
+                    reference.map(f32::to_bits),
+                    "{index} {hash}"
+                );
+                let single = sobol_0(index.reverse_bits(), scrambles);
+                assert_eq!(single.to_bits(), reference[0].to_bits());
+            }
+        }
+    }
+
+    #[test]
+    fn alias_table_frequencies_match_weights() {
+        let weights = [1.0, 0.0, 3.0, 6.0];
+        let table = AliasTable::new(&weights);
+        let mut counts = [0u32; 4];
+        let n = 100_000;
+        for i in 0..n {
+            let (index, _) = table.sample((i as f32 + 0.5) / n as f32).unwrap();
+            counts[index] += 1;
+        }
+        for (count, w) in counts.iter().zip(weights) {
+            let expected = w / 10.0 * n as f32;
+            assert!((*count as f32 - expected).abs() <= 2.0 + 1e-3 * n as f32);
+        }
+        assert!((table.pmf(3) - 0.6).abs() < 1e-6);
+    }
+
+    #[test]
+    fn alias_table_of_zero_weights_is_empty() {
+        assert!(
+            AliasTable::new(&[0.0, -1.0, f32::NAN])
+                .sample(0.5)
+                .is_none()
+        );
+    }
+
+    #[test]
+    fn uniform_numbers_are_in_range_and_decorrelated_across_dimensions() {
+        let s = SampleStream::new(7, 3, 11);
+        let mut mean = 0.0;
+        for d in 0..10_000 {
+            let u = s.uniform(d);
+            assert!((0.0..1.0).contains(&u));
+            mean += u as f64;
+        }
+        assert!((mean / 10_000.0 - 0.5).abs() < 0.01);
+        assert_ne!(
+            SampleStream::new(0, 0, 0).uniform(0),
+            SampleStream::new(0, 0, 1).uniform(0)
+        );
+    }
+}

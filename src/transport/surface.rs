@@ -1,0 +1,150 @@
+//! What a ray hit, seen as a surface: position with its error bound, normals,
+//! texture coordinates, emitted radiance and the BRDF there.
+//!
+//! Emission is one-sided (the front face, by winding) unless the material is
+//! double-sided; reflection is two-sided: the shading frame is flipped to the
+//! side the ray arrives from.
+
+use glam::{Vec2, Vec3};
+
+use crate::geometry::{Frame, Ray, interpolate_point, offset_ray_origin};
+use crate::render::settings::{BrdfOverride, RenderSettings};
+use crate::scene::{BrdfModel, Material, Scene, TextureRef};
+use crate::transport::brdf::Brdf;
+
+/// Unit normal of the front face of triangle (p0, p1, p2), counter-clockwise
+/// seen from the front; +Z for a degenerate triangle.
+#[inline(always)]
+pub fn geometric_normal(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
+    (p1 - p0).cross(p2 - p0).normalize_or(Vec3::Z)
+}
+
+/// A point on a scene triangle.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfacePoint {
+    pub p: Vec3,
+    /// Bound on the absolute rounding error of `p`, per axis.
+    pub p_error: Vec3,
+    /// Unit geometric normal of the front face (counter-clockwise winding).
+    pub ng: Vec3,
+    /// Unit shading normal (interpolated, or `ng`), on the front side.
+    pub ns: Vec3,
+    /// Barycentrics on the triangle: texture coordinates are interpolated
+    /// from them only where a texture is read ([`SurfacePoint::uv`]).
+    pub b: Vec3,
+    pub triangle: u32,
+    pub material: u32,
+}
+
+impl SurfacePoint {
+    /// The point at barycentrics `b` of scene triangle `triangle`.
+    pub fn new(scene: &Scene, triangle: u32, b: Vec3) -> Self {
+        let tri = &scene.triangles[triangle as usize];
+        let [i0, i1, i2] = tri.vertices.map(|v| v as usize);
+        let (p0, p1, p2) = (
+            scene.positions[i0],
+            scene.positions[i1],
+            scene.positions[i2],
+        );
+        let (p, p_error) = interpolate_point(b, p0, p1, p2);
+        let ng = geometric_normal(p0, p1, p2);
+        let ns = if tri.smooth {
+            let n = b.x * scene.normals[i0] + b.y * scene.normals[i1] + b.z * scene.normals[i2];
+            let n = n.normalize_or(ng);
+            if n.dot(ng) < 0.0 { -n } else { n }
+        } else {
+            ng
+        };
+        Self {
+            p,
+            p_error,
+            ng,
+            ns,
+            b,
+            triangle,
+            material: tri.material,
+        }
+    }
+
+    /// The shading frame on the side of `wo`, and the geometric normal on that side.
+    pub fn frame_towards(&self, wo: Vec3) -> (Frame, Vec3) {
+        if self.ng.dot(wo) >= 0.0 {
+            (Frame::from_z(self.ns), self.ng)
+        } else {
+            (Frame::from_z(-self.ns), -self.ng)
+        }
+    }
+
+    /// A ray leaving the surface in direction `w` (unbounded).
+    pub fn spawn_ray(&self, w: Vec3) -> Ray {
+        Ray::new(
+            offset_ray_origin(self.p, self.p_error, self.ng, w),
+            w,
+            f32::INFINITY,
+        )
+    }
+
+    /// Texture coordinates of set `set` (0 or 1; higher sets read set 1).
+    pub fn uv(&self, scene: &Scene, set: u32) -> Vec2 {
+        let [i0, i1, i2] = scene.triangles[self.triangle as usize]
+            .vertices
+            .map(|v| scene.uv(set, v));
+        self.b.x * i0 + self.b.y * i1 + self.b.z * i2
+    }
+
+    fn texture(&self, scene: &Scene, texture: Option<TextureRef>) -> Vec3 {
+        texture.map_or(Vec3::ONE, |t| {
+            scene.textures[t.texture as usize].sample(self.uv(scene, t.uv_set))
+        })
+    }
+
+    /// Radiance emitted towards `wo` (unit, away from the surface).
+    pub fn emitted(&self, scene: &Scene, wo: Vec3) -> Vec3 {
+        let material = &scene.materials[self.material as usize];
+        if !material.is_emissive() || !(material.double_sided || self.ng.dot(wo) > 0.0) {
+            return Vec3::ZERO;
+        }
+        material.emission * self.texture(scene, material.emission_texture)
+    }
+
+    /// The reflection model here, after the global override of `settings`.
+    pub fn brdf(&self, scene: &Scene, settings: &RenderSettings) -> Brdf {
+        let material = &scene.materials[self.material as usize];
+        let base = material.base_color * self.texture(scene, material.base_color_texture);
+        resolve_brdf(material, base, settings)
+    }
+}
+
+/// The course's mapping of a material (with base colour `base` already textured)
+/// onto Lambert, Phong or mirror, honouring the global override.
+pub fn resolve_brdf(material: &Material, base: Vec3, settings: &RenderSettings) -> Brdf {
+    let override_phong = || {
+        let ks = settings.phong_specular;
+        Brdf::Phong {
+            kd: base * (1.0 - ks),
+            ks: Vec3::splat(ks),
+            exponent: settings.phong_exponent,
+        }
+    };
+    match settings.brdf {
+        BrdfOverride::Lambert => Brdf::Lambert { albedo: base },
+        BrdfOverride::Mirror => Brdf::Mirror { reflectance: base },
+        BrdfOverride::Phong => override_phong(),
+        BrdfOverride::Authored => match material.brdf_model() {
+            BrdfModel::Lambert => Brdf::Lambert { albedo: base },
+            BrdfModel::Mirror => Brdf::Mirror { reflectance: base },
+            BrdfModel::Phong { exponent } => {
+                let metallic = material.metallic.clamp(0.0, 1.0);
+                let kd = base * (1.0 - metallic);
+                let ks = Vec3::splat(0.04).lerp(base, metallic);
+                // energy conservation: kd + ks ≤ 1 in every channel
+                let scale = (kd + ks).max_element().max(1.0);
+                Brdf::Phong {
+                    kd: kd / scale,
+                    ks: ks / scale,
+                    exponent,
+                }
+            }
+        },
+    }
+}
