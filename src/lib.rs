@@ -41,8 +41,8 @@ pub mod scene;
 pub mod tools;
 pub mod transport;
 
+pub use render::context::RenderContext;
 pub use render::film::Film;
 pub use render::settings::{BrdfOverride, LightMode, RenderSettings, Term, TermSet};
 pub use scene::Scene;
 pub use scene::error::SceneError;
-pub use transport::fast::RenderContext;

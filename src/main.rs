@@ -16,7 +16,7 @@ use lumiere::analysis::noise::DisplayMode;
 use lumiere::analysis::path_view::PathSample;
 use lumiere::render::export::{ImageFormat, save_image};
 use lumiere::render::settings::{
-    Adaptive, DisplaySettings, IndirectSampling, LightSampling, LightSelection,
+    Adaptive, DisplaySettings, IndirectSampling, Integrator, LightSampling, LightSelection,
     MAX_SAMPLES_PER_VERTEX, MisHeuristic, Sampler, Tonemap,
 };
 use lumiere::render::sidecar::Sidecar;
@@ -32,6 +32,7 @@ use lumiere::tools::bench::{Progress, Section};
 use lumiere::tools::strip::{
     RowSweep, SampleCounts, StripImage, StripLayout, StripRow, render_strip,
 };
+use lumiere::transport::splitting::choose_continuations;
 use lumiere::{BrdfOverride, Film, LightMode, RenderContext, RenderSettings, TermSet};
 
 /// Counts heap bytes for `lumiere bench`'s memory figures (two relaxed atomics per allocation).
@@ -161,6 +162,9 @@ struct SceneOptions {
     max_bounces: u32,
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// The estimator: lecture (the course's L0 + L1 + L2 as the slides write it, `transport/lecture.rs`) or fast (the path tracer with the options below).
+    #[arg(long, default_value = "fast")]
+    integrator: Integrator,
     /// Direct lighting from extended lights: area, solid-angle, brdf, hemisphere or mis (light + BRDF).
     #[arg(long, default_value = "mis")]
     light_sampling: LightSampling,
@@ -390,6 +394,7 @@ impl SceneOptions {
             phong_exponent: self.phong_exponent,
             max_bounces: self.max_bounces,
             seed: self.seed,
+            integrator: self.integrator,
             light_sampling: self.light_sampling,
             mis_heuristic: self.mis_heuristic,
             indirect_sampling: self.indirect_sampling,
@@ -505,7 +510,8 @@ fn run_render(args: &RenderArgs) -> Result<(), Failure> {
         .context("cannot start the worker threads")
         .map_err(runtime)?;
     let (film, stats, continuations) = pool.install(|| {
-        let context = RenderContext::with_camera(scene, settings.clone(), job.camera.as_ref());
+        let mut context = RenderContext::with_camera(scene, settings.clone(), job.camera.as_ref());
+        choose_continuations(&mut context);
         let mut film = Film::new(settings.width, settings.height);
         let bar = progress_bar(job.budget);
         let stats = render(&context, &mut film, job.budget, |s| {
@@ -852,7 +858,9 @@ fn update_bar(bar: &ProgressBar, stats: &RenderStats, budget: Budget) {
 
 /// What `--indirect-samples auto` chose: one count, or the range of the
 /// regions' counts and their mean over the image.
-fn describe_continuations(continuations: &lumiere::transport::splitting::Continuations) -> String {
+fn describe_continuations(
+    continuations: &lumiere::transport::continuations::Continuations,
+) -> String {
     match continuations.map {
         None => format!(
             "indirect samples: {} per first hit (auto)",

@@ -8,8 +8,8 @@ use common::{add_floor, estimate, polygon_irradiance};
 
 use glam::Vec3;
 use lumiere::geometry::Ray;
+use lumiere::render::context::RenderContext;
 use lumiere::scene::{Material, Scene};
-use lumiere::transport::fast::RenderContext;
 use lumiere::{LightMode, RenderSettings, Term, TermSet};
 
 const ALBEDO: f32 = 0.5;

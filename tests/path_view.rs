@@ -7,7 +7,7 @@ use lumiere::geometry::camera::CameraRays;
 use lumiere::render::color::luminance;
 use lumiere::render::{PassBuffer, render_pass};
 use lumiere::scene::{Camera, Projection, builtin};
-use lumiere::transport::fast::SegmentKind;
+use lumiere::transport::path_log::SegmentKind;
 use lumiere::{Film, RenderContext, RenderSettings, Term, TermSet};
 
 fn cameras() -> Vec<(&'static str, CameraRays)> {

@@ -6,7 +6,7 @@ use common::small;
 use lumiere::render::settings::LightSampling;
 use lumiere::render::{Budget, render};
 use lumiere::scene::builtin;
-use lumiere::transport::fast::RayCounts;
+use lumiere::transport::counts::RayCounts;
 use lumiere::{Film, LightMode, RenderContext, RenderSettings, Term, TermSet};
 
 fn rays_of(settings: &RenderSettings, spp: u32) -> RayCounts {

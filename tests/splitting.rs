@@ -9,12 +9,12 @@ use std::sync::Arc;
 
 use common::{add_floor, small};
 use glam::Vec3;
+use lumiere::render::context::RenderContext;
 use lumiere::render::settings::Sampler;
 use lumiere::render::{Budget, render};
 use lumiere::scene::builtin;
 use lumiere::scene::{Camera, Material, Projection, Scene};
-use lumiere::transport::fast::RenderContext;
-use lumiere::transport::splitting::{SplitChoice, choose_indirect_samples};
+use lumiere::transport::splitting::{SplitChoice, choose_continuations, choose_indirect_samples};
 use lumiere::{Film, RenderSettings, TermSet};
 
 fn auto(settings: RenderSettings) -> RenderSettings {
@@ -53,8 +53,9 @@ fn the_cornell_box_splits_its_continuations() {
     assert_eq!(sobol.optimum, independent.optimum);
     assert!(sobol.count >= independent.count);
 
-    // and the context built for auto takes it
-    let context = RenderContext::new(builtin::cornell(), auto(small(64, 48, TermSet::COURSE)));
+    // and a context built for auto takes it
+    let mut context = RenderContext::new(builtin::cornell(), auto(small(64, 48, TermSet::COURSE)));
+    choose_continuations(&mut context);
     assert_eq!(context.continuations, independent.continuations());
 }
 
@@ -212,7 +213,7 @@ fn the_cornell_box_splits_its_dark_regions_more() {
 #[test]
 fn a_map_of_counts_keeps_the_mean_and_cuts_the_noise_where_it_splits() {
     use lumiere::render::settings::Term;
-    use lumiere::transport::splitting::{Continuations, SplitMap};
+    use lumiere::transport::continuations::{Continuations, SplitMap};
     let settings = small(32, 24, TermSet::COURSE);
     let scene = Arc::new(builtin::cornell());
     let render_with = |continuations: Continuations| {

@@ -10,10 +10,12 @@ use std::sync::Arc;
 use common::{add_floor, assert_agrees, estimate, mean_and_error, polygon_irradiance, small};
 use glam::{DVec3, Vec2, Vec3};
 use lumiere::geometry::Ray;
+use lumiere::render::context::RenderContext;
 use lumiere::render::settings::{IndirectSampling, LightSampling, LightSelection, MisHeuristic};
 use lumiere::scene::builtin::{self, furnace, point_in_sphere};
 use lumiere::scene::{Material, PunctualKind, PunctualLight, Scene};
-use lumiere::transport::fast::{PathLog, RayCounts, RenderContext, SegmentKind};
+use lumiere::transport::counts::RayCounts;
+use lumiere::transport::path_log::{PathLog, SegmentKind};
 use lumiere::transport::sampling::{SampleStream, spherical_triangle, spherical_triangle_area};
 use lumiere::{Film, LightMode, RenderSettings, Term, TermSet};
 

@@ -23,12 +23,13 @@ use std::thread::JoinHandle;
 
 use crate::analysis::convergence::EstimatorKey;
 use crate::analysis::metrics::ReferenceImage;
+use crate::render::context::RenderContext;
 use crate::render::film::Film;
 use crate::render::progressive::ImageSource;
 use crate::render::settings::RenderSettings;
 use crate::render::{Budget, render_cancellable};
 use crate::scene::{Camera, Scene};
-use crate::transport::fast::RenderContext;
+use crate::transport::splitting::choose_continuations;
 
 /// The seed a reference of an image of seed `seed` is rendered with.
 pub fn reference_seed(seed: u64) -> u64 {
@@ -120,11 +121,12 @@ impl ReferenceJob {
         mut progress: impl FnMut(u32),
     ) -> Option<ReferenceImage> {
         let settings = &self.settings;
-        let context = RenderContext::with_camera(
+        let mut context = RenderContext::with_camera(
             Arc::clone(&self.scene),
             settings.clone(),
             Some(&self.camera),
         );
+        choose_continuations(&mut context);
         let mut film = Film::new(settings.width, settings.height);
         render_cancellable(
             &context,

@@ -28,7 +28,7 @@ use glam::Vec2;
 use crate::geometry::camera::CameraRays;
 use crate::render::color::luminance;
 use crate::render::settings::{Term, TermSet};
-use crate::transport::fast::{PathLog, PathSegment, SegmentKind};
+use crate::transport::path_log::{PathLog, PathSegment, SegmentKind};
 
 /// What a drawn ray did, which decides its style.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

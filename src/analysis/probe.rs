@@ -21,10 +21,13 @@ use std::collections::HashMap;
 use glam::{DVec3, Vec3};
 
 use crate::render::color::luminance;
+use crate::render::context::RenderContext;
 use crate::render::film::{Film, Welford};
 use crate::render::sample_stream;
 use crate::render::settings::{Term, TermSet};
-use crate::transport::fast::{PathLog, RayCounts, RenderContext, TermRadiance};
+use crate::transport::TermRadiance;
+use crate::transport::counts::RayCounts;
+use crate::transport::path_log::PathLog;
 
 /// Most samples of one term a probe traces again (about 0.1 s for deep paths).
 pub const MAX_PROBE_SAMPLES: u32 = 16_384;

@@ -21,12 +21,13 @@ use egui_plot::{Bar, BarChart, Plot, VLine};
 
 use crate::analysis::path_view::{PathLine, PathSample, RayRole, path_lines, segment_luminance};
 use crate::analysis::probe::{FilmPixel, MAX_PROBE_SAMPLES, PixelProbe, TermProbe, trace_pixel};
+use crate::render::context::RenderContext;
 use crate::render::film::Film;
 use crate::render::progressive::ViewRequest;
 use crate::render::settings::{LightMode, RenderSettings, Term, TermSet};
 use crate::scene::Scene;
-use crate::transport::fast::{PathLog, RenderContext};
-use crate::transport::splitting::Continuations;
+use crate::transport::continuations::Continuations;
+use crate::transport::path_log::PathLog;
 
 /// Shortest time between two refreshes of the probe while the film converges.
 pub const REFRESH_INTERVAL: Duration = Duration::from_millis(500);

@@ -9,6 +9,7 @@
 
 pub mod adaptive;
 pub mod color;
+pub mod context;
 pub mod export;
 pub mod film;
 pub mod progressive;
@@ -22,9 +23,11 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::render::adaptive::terms_to_sample;
+use crate::render::context::RenderContext;
 use crate::render::film::Film;
 use crate::render::settings::{RenderSettings, Term};
-use crate::transport::fast::{RayCounts, RenderContext, TermRadiance};
+use crate::transport::TermRadiance;
+use crate::transport::counts::RayCounts;
 use crate::transport::sampling::SampleStream;
 
 /// Rows per tile: small enough to balance two to many cores, large enough

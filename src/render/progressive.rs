@@ -26,12 +26,14 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use crate::geometry::camera::CameraRays;
+use crate::render::context::RenderContext;
 use crate::render::film::Film;
 use crate::render::settings::{RenderSettings, Term, TermSet};
 use crate::render::{PassBuffer, render_pass_cancellable};
 use crate::scene::{Camera, Scene};
-use crate::transport::fast::{RayCounts, RenderContext};
-use crate::transport::splitting::Continuations;
+use crate::transport::continuations::Continuations;
+use crate::transport::counts::RayCounts;
+use crate::transport::splitting::choose_continuations;
 
 /// Everything that decides what the viewer shows.
 #[derive(Clone, Debug)]
@@ -316,7 +318,7 @@ impl Worker {
             current.context.settings = settings.clone();
             current.context.camera =
                 CameraRays::new(&request.camera, settings.width, settings.height);
-            current.context.update_continuations();
+            choose_continuations(&mut current.context);
             current.film = Arc::new(Mutex::new(Film::new(settings.width, settings.height)));
             *lock(&self.shared.film) = Some(Arc::clone(&current.film));
             current.next_sample = 0;
@@ -339,11 +341,12 @@ impl Worker {
     /// Builds lights and BVH for `request` and starts from an empty film.
     fn start(&mut self, request: ViewRequest) {
         let settings = request.settings.clone();
-        let context = RenderContext::with_camera(
+        let mut context = RenderContext::with_camera(
             Arc::clone(&request.scene),
             settings.clone(),
             Some(&request.camera),
         );
+        choose_continuations(&mut context);
         let film = Arc::new(Mutex::new(Film::new(settings.width, settings.height)));
         *lock(&self.shared.film) = Some(Arc::clone(&film));
         self.restarts += 1;

@@ -351,6 +351,30 @@ impl Sampler {
     }
 }
 
+/// Which estimator computes the terms.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Integrator {
+    /// The lecture's estimator, written as the slides write it
+    /// (`transport/lecture.rs`): one light sample and one BRDF direction per
+    /// point, nothing else.
+    Lecture,
+    /// The fast path tracer (`transport/fast.rs`): the strategies, MIS,
+    /// splitting and skipped work of the other settings.
+    #[default]
+    Fast,
+}
+
+impl Integrator {
+    pub const ALL: [Integrator; 2] = [Integrator::Lecture, Integrator::Fast];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Integrator::Lecture => "lecture",
+            Integrator::Fast => "fast",
+        }
+    }
+}
+
 /// Adaptive sampling: a pixel's term stops receiving samples once its
 /// standard error is a small enough fraction of the pixel's value.
 ///
@@ -491,6 +515,7 @@ label_from_str!(MisHeuristic);
 label_from_str!(IndirectSampling);
 label_from_str!(LightSelection);
 label_from_str!(Sampler);
+label_from_str!(Integrator);
 
 /// Everything that decides the radiance a render estimates (not how long it runs).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -510,6 +535,8 @@ pub struct RenderSettings {
     /// Most reflections a path may have (caps L3+).
     pub max_bounces: u32,
     pub seed: u64,
+    /// The estimator: the lecture's, or the fast one (the default).
+    pub integrator: Integrator,
     /// Estimator of direct lighting from extended lights.
     pub light_sampling: LightSampling,
     pub mis_heuristic: MisHeuristic,
@@ -546,6 +573,7 @@ impl Default for RenderSettings {
             phong_specular: 0.25,
             max_bounces: 64,
             seed: 0,
+            integrator: Integrator::default(),
             light_sampling: LightSampling::default(),
             mis_heuristic: MisHeuristic::default(),
             indirect_sampling: IndirectSampling::default(),

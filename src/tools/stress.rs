@@ -29,12 +29,13 @@ use glam::{Affine3A, Vec3};
 use crate::geometry::Ray;
 use crate::geometry::accel::Accel;
 use crate::render::color::luminance;
+use crate::render::context::RenderContext;
 use crate::render::film::Film;
 use crate::render::settings::{BrdfOverride, LightMode, RenderSettings, Term, TermSet};
 use crate::render::{PassBuffer, render_pass};
 use crate::scene::builtin::uv_sphere;
 use crate::scene::{Camera, Material, Projection, PunctualKind, PunctualLight, Scene};
-use crate::transport::fast::{RayCounts, RenderContext};
+use crate::transport::counts::RayCounts;
 
 /// Largest |z| of a noisy term's mean against its exact value.
 pub const Z_LIMIT: f64 = 5.0;

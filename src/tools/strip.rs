@@ -29,6 +29,7 @@ use std::time::Instant;
 
 use image::{ImageBuffer, Rgb};
 
+use crate::render::context::RenderContext;
 use crate::render::export::{ExportError, to_srgb8};
 use crate::render::film::Film;
 use crate::render::settings::{
@@ -37,7 +38,7 @@ use crate::render::settings::{
 };
 use crate::render::{PassBuffer, RenderStats, render_pass};
 use crate::scene::Scene;
-use crate::transport::fast::RenderContext;
+use crate::transport::splitting::choose_continuations;
 
 /// Largest strip side in pixels: a PNG a slide can hold, a buffer memory can.
 pub const MAX_STRIP_SIDE: u64 = 16384;
@@ -591,7 +592,8 @@ pub fn render_strip(
     mut row_done: impl FnMut(usize, &RenderStats),
 ) {
     for (r, row) in rows.iter().enumerate() {
-        let context = RenderContext::new(scene.clone(), row.settings.clone());
+        let mut context = RenderContext::new(scene.clone(), row.settings.clone());
+        choose_continuations(&mut context);
         let stats = render_row(
             &context,
             counts,

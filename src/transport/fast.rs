@@ -71,49 +71,22 @@
 //! searches the whole scene only if the ray meets a light. [`SkippedWork`]
 //! counts each.
 
-use std::sync::Arc;
-
 use glam::Vec3;
 
+use crate::geometry::Frame;
+use crate::geometry::Ray;
 use crate::geometry::accel::{Accel, Hit, Query};
-use crate::geometry::camera::CameraRays;
-use crate::geometry::{Frame, Ray};
-use crate::render::settings::{
-    IndirectSampling, LightSampling, MisHeuristic, RenderSettings, Term, TermSet,
-};
-use crate::scene::{Camera, Scene};
+use crate::render::context::RenderContext;
+use crate::render::settings::{IndirectSampling, LightSampling, MisHeuristic, Term, TermSet};
 use crate::transport::brdf::{Brdf, BrdfSample};
-use crate::transport::lights::LightTable;
+use crate::transport::counts::RayCounts;
+use crate::transport::path_log::{PathLog, PathSegment, SegmentKind};
 use crate::transport::sampling::{
     SampleStream, UNIFORM_HEMISPHERE_PDF, balance_heuristic, cosine_hemisphere,
     cosine_hemisphere_pdf, dim, power_heuristic, uniform_hemisphere,
 };
-use crate::transport::splitting::Continuations;
 use crate::transport::surface::SurfacePoint;
-
-/// Radiance of one sample, per term.
-pub type TermRadiance = [Vec3; Term::COUNT];
-
-/// Rays traced, by kind and by the lowest selected term each serves: the
-/// shadow ray or gathered direction at the k-th reflection serves L_k; a ray
-/// leaving the camera (k = 0) or the k-th reflection serves L_k and every
-/// later term.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct RayCounts {
-    pub camera: u64,
-    pub shadow: u64,
-    pub bounce: u64,
-    /// Directions traced only to find lights (not continuing the path).
-    pub gather: u64,
-    pub per_term: [u64; Term::COUNT],
-    /// Work the settings and the scene made unnecessary.
-    pub skipped: SkippedWork,
-    /// Samples with a NaN, infinite or negative term, zeroed before they reach the film.
-    pub invalid_samples: u64,
-    /// Camera rays, bounces and gathered directions that left the scene (in a
-    /// closed scene, leaks).
-    pub escaped: u64,
-}
+use crate::transport::{TermRadiance, guard_sample};
 
 /// The reflections after which Russian roulette may end a path: from the
 /// fourth on, so that it only touches L3+ and never its largest part, the
@@ -122,146 +95,6 @@ pub struct RayCounts {
 /// on the Cornell box with every term (Sobol, 256×256, `docs/benchmarks.md`):
 /// the roulette's weights 1/q add noise where L3+ is largest.
 pub const ROULETTE_FROM_REFLECTION: u32 = 4;
-
-/// Work not done because nothing would come of it, counted to show what the
-/// settings and the scene save.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct SkippedWork {
-    /// Shadow rays not traced: the light sample was behind the surface or carried nothing.
-    pub shadow_rays: u64,
-    /// Vertices whose direct lighting was not estimated: its term is off.
-    pub direct_lighting: u64,
-    /// Directions not gathered: the scene has no light a ray can hit.
-    pub gathered: u64,
-    /// Continuations not traced: no selected term needs another reflection.
-    pub continuations: u64,
-    /// Paths ended by Russian roulette.
-    pub roulette: u64,
-    /// Samples of a pixel's term not taken: adaptive sampling had stopped it.
-    pub converged: u64,
-    /// Searches of the whole scene's BVH not made: a direction traced only to
-    /// find a light met no light's box or triangle (the ray itself is traced,
-    /// against the lights alone).
-    pub scene_searches: u64,
-}
-
-impl SkippedWork {
-    /// Rays that were not traced.
-    pub fn rays(&self) -> u64 {
-        self.shadow_rays + self.gathered + self.continuations + self.roulette
-    }
-
-    pub fn add(&mut self, other: &SkippedWork) {
-        self.shadow_rays += other.shadow_rays;
-        self.direct_lighting += other.direct_lighting;
-        self.gathered += other.gathered;
-        self.continuations += other.continuations;
-        self.roulette += other.roulette;
-        self.converged += other.converged;
-        self.scene_searches += other.scene_searches;
-    }
-
-    /// One line for summaries: the non-zero counts.
-    pub fn describe(&self) -> String {
-        let parts: Vec<String> = [
-            (self.shadow_rays, "shadow rays (light behind the surface)"),
-            (self.direct_lighting, "light samplings (term off)"),
-            (self.gathered, "gathered directions (no light to hit)"),
-            (self.continuations, "continuations (no term needs them)"),
-            (self.roulette, "paths ended by Russian roulette"),
-            (
-                self.converged,
-                "term samples of converged pixels (adaptive)",
-            ),
-            (
-                self.scene_searches,
-                "scene searches (light searches that met no light)",
-            ),
-        ]
-        .iter()
-        .filter(|(n, _)| *n > 0)
-        .map(|(n, what)| format!("{n} {what}"))
-        .collect();
-        if parts.is_empty() {
-            "nothing".into()
-        } else {
-            parts.join(", ")
-        }
-    }
-}
-
-impl RayCounts {
-    pub fn total(&self) -> u64 {
-        self.camera + self.shadow + self.bounce + self.gather
-    }
-
-    pub fn add(&mut self, other: &RayCounts) {
-        self.camera += other.camera;
-        self.shadow += other.shadow;
-        self.bounce += other.bounce;
-        self.gather += other.gather;
-        for (mine, theirs) in self.per_term.iter_mut().zip(other.per_term) {
-            *mine += theirs;
-        }
-        self.skipped.add(&other.skipped);
-        self.invalid_samples += other.invalid_samples;
-        self.escaped += other.escaped;
-    }
-}
-
-/// The segments of one traced sample, for drawing its path.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct PathLog {
-    pub segments: Vec<PathSegment>,
-}
-
-impl PathLog {
-    /// The contributions of the segments, summed per term.
-    pub fn radiance(&self) -> TermRadiance {
-        let mut radiance = [Vec3::ZERO; Term::COUNT];
-        for segment in &self.segments {
-            radiance[segment.term.index()] += segment.radiance;
-        }
-        radiance
-    }
-}
-
-/// One ray of a traced sample.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PathSegment {
-    pub from: Vec3,
-    /// The ray as traced (origin, direction, t_max): what a replay through
-    /// the BVH asks again (`bench::throughput`).
-    pub ray: Ray,
-    /// Where the ray stopped: its hit, the light point of a shadow ray, or one
-    /// scene diagonal away for a ray that left the scene.
-    pub to: Vec3,
-    pub kind: SegmentKind,
-    /// How it was traced: what a replay through the BVH asks again.
-    pub query: Query,
-    /// The term its contribution is filed under (the lowest it serves).
-    pub term: Term,
-    /// The radiance it added to `term` (zero if none).
-    pub radiance: Vec3,
-}
-
-/// What a traced ray was for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SegmentKind {
-    Camera,
-    /// A continuation of the path (next reflection).
-    Bounce,
-    /// Towards a light sample.
-    Shadow {
-        occluded: bool,
-        /// The sphere light the ray aims at, which does not block it.
-        target_sphere: Option<u32>,
-    },
-    /// A direction traced only to find a light.
-    Gather {
-        hit_light: bool,
-    },
-}
 
 /// What the continuations of one pilot sample brought (`RenderContext::pilot_sample`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -276,76 +109,7 @@ pub struct ContinuationSplit {
     pub continuation_rays: u64,
 }
 
-/// Everything a sample needs: the scene, its acceleration structure, its
-/// lights and the settings they were built for.
-pub struct RenderContext {
-    pub scene: Arc<Scene>,
-    pub accel: Accel,
-    pub lights: LightTable,
-    pub settings: RenderSettings,
-    pub camera: CameraRays,
-    /// Continuations per first hit the samples take: `settings.indirect_samples`,
-    /// or the pilot's choice, region by region, with
-    /// `settings.auto_indirect_samples` (`splitting`).
-    pub continuations: Continuations,
-    /// How far the path log draws a ray that left the scene: one scene
-    /// diagonal (at least 1 m), found once, not per ray (it reads every vertex).
-    pub escape_length: f32,
-}
-
 impl RenderContext {
-    /// Builds the lights and the BVH of `scene` for `settings`, with the scene's default camera.
-    pub fn new(scene: impl Into<Arc<Scene>>, settings: RenderSettings) -> Self {
-        Self::with_camera(scene, settings, None)
-    }
-
-    /// [`RenderContext::new`] through `camera` (`None`: the scene's default
-    /// one). With `auto_indirect_samples` the pilot runs here, through that
-    /// camera: the view decides where the noise is.
-    pub fn with_camera(
-        scene: impl Into<Arc<Scene>>,
-        settings: RenderSettings,
-        camera: Option<&Camera>,
-    ) -> Self {
-        let scene = scene.into();
-        let lights = LightTable::build(&scene, &settings);
-        let accel = Accel::build(&scene, |t| !lights.is_hidden(t), lights.spheres.clone());
-        let camera = match camera {
-            Some(camera) => CameraRays::new(camera, settings.width, settings.height),
-            None => CameraRays::new(&scene.default_camera(), settings.width, settings.height),
-        };
-        let escape_length = scene.bounds().diagonal().max(1.0);
-        let mut context = Self {
-            escape_length,
-            scene,
-            accel,
-            lights,
-            continuations: Continuations::uniform(settings.indirect_samples),
-            settings,
-            camera,
-        };
-        context.update_continuations();
-        context
-    }
-
-    /// Sets the continuations per first hit the walks take from the
-    /// settings: their count, or with `auto_indirect_samples` the pilot's
-    /// choice through the current camera. Called once the settings and the
-    /// camera of a film are final.
-    pub fn update_continuations(&mut self) {
-        self.continuations = if self.settings.auto_indirect_samples {
-            crate::transport::splitting::choose_indirect_samples(self).continuations()
-        } else {
-            Continuations::uniform(self.settings.indirect_samples)
-        };
-    }
-
-    /// Renders through `camera` from now on; the continuations per first
-    /// hit stay as they are (a film's samples must all take the same).
-    pub fn set_camera(&mut self, camera: &Camera) {
-        self.camera = CameraRays::new(camera, self.settings.width, self.settings.height);
-    }
-
     /// One sample of pixel (`x`, `y`) with two continuations at the first
     /// hit, whatever the settings say, and what each continuation brought:
     /// the splitting pilot's measurement.
@@ -362,36 +126,6 @@ impl RenderContext {
         (guard_sample(radiance, counts), split)
     }
 
-    /// One sample of pixel (`x`, `y`): its radiance per term.
-    pub fn sample_pixel(
-        &self,
-        x: u32,
-        y: u32,
-        stream: &SampleStream,
-        counts: &mut RayCounts,
-    ) -> TermRadiance {
-        self.sample_pixel_terms(x, y, stream, counts, self.settings.terms)
-    }
-
-    /// [`RenderContext::sample_pixel`] for the terms of `terms` only (a
-    /// subset of the settings' terms): the others come out zero and their
-    /// work is skipped. A term's value does not depend on which others are
-    /// computed: each random dimension belongs to one vertex and one use.
-    pub fn sample_pixel_terms(
-        &self,
-        x: u32,
-        y: u32,
-        stream: &SampleStream,
-        counts: &mut RayCounts,
-        terms: TermSet,
-    ) -> TermRadiance {
-        let ray = self.camera.generate(x, y, stream.uniform2(dim::PIXEL));
-        let mut walk = Walk::new(self, counts, None);
-        walk.restrict_terms(terms);
-        let radiance = walk.camera_path(ray, stream, self.continuations.at(x, y));
-        guard_sample(radiance, counts)
-    }
-
     /// [`RenderContext::sample_pixel`] that also appends every ray it traces to `log`.
     pub fn trace_recorded(
         &self,
@@ -406,29 +140,22 @@ impl RenderContext {
         let radiance = Walk::new(self, counts, Some(log)).camera_path(ray, stream, splits);
         guard_sample(radiance, counts)
     }
-
-    /// Radiance arriving along `ray` (unit direction), per term, with the
-    /// continuations of the whole image.
-    pub fn trace(&self, ray: Ray, stream: &SampleStream, counts: &mut RayCounts) -> TermRadiance {
-        Walk::new(self, counts, None).camera_path(ray, stream, self.continuations.count)
-    }
 }
 
-/// The film's guard: a term whose radiance is not finite or is negative
-/// (a numerical accident; radiance cannot be negative) is set to zero, and the
-/// sample counted in `counts.invalid_samples`. Zeroing biases the pixel
-/// slightly dark, so the count must stay 0; the stress suite checks it does.
-#[inline(always)]
-fn guard_sample(mut radiance: TermRadiance, counts: &mut RayCounts) -> TermRadiance {
-    let mut invalid = false;
-    for term in &mut radiance {
-        if !(term.is_finite() && term.min_element() >= 0.0) {
-            *term = Vec3::ZERO;
-            invalid = true;
-        }
-    }
-    counts.invalid_samples += u64::from(invalid);
-    radiance
+/// The fast integrator's radiance along camera ray `ray` (unit direction),
+/// for the terms of `terms` (within the settings'), with `splits`
+/// continuations at the first hit; unguarded.
+pub(crate) fn radiance(
+    context: &RenderContext,
+    ray: Ray,
+    stream: &SampleStream,
+    terms: TermSet,
+    splits: u32,
+    counts: &mut RayCounts,
+) -> TermRadiance {
+    let mut walk = Walk::new(context, counts, None);
+    walk.restrict_terms(terms);
+    walk.camera_path(ray, stream, splits)
 }
 
 /// A distribution of directions on the hemisphere of a vertex.

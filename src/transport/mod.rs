@@ -11,8 +11,89 @@
 //! | `splitting.rs` | the pilot that chooses continuations per first hit |
 
 pub mod brdf;
+pub mod continuations;
+pub mod counts;
 pub mod fast;
+pub mod lecture;
 pub mod lights;
+pub mod path_log;
 pub mod sampling;
 pub mod splitting;
 pub mod surface;
+
+use glam::Vec3;
+
+use crate::geometry::Ray;
+use crate::render::context::RenderContext;
+use crate::render::settings::{Integrator, Term, TermSet};
+use crate::transport::counts::RayCounts;
+use crate::transport::sampling::{SampleStream, dim};
+
+/// Radiance of one sample, per term.
+pub type TermRadiance = [Vec3; Term::COUNT];
+
+/// The film's guard: a term whose radiance is not finite or is negative
+/// (a numerical accident; radiance cannot be negative) is set to zero, and the
+/// sample counted in `counts.invalid_samples`. Zeroing biases the pixel
+/// slightly dark, so the count must stay 0; the stress suite checks it does.
+#[inline(always)]
+pub(crate) fn guard_sample(mut radiance: TermRadiance, counts: &mut RayCounts) -> TermRadiance {
+    let mut invalid = false;
+    for term in &mut radiance {
+        if !(term.is_finite() && term.min_element() >= 0.0) {
+            *term = Vec3::ZERO;
+            invalid = true;
+        }
+    }
+    counts.invalid_samples += u64::from(invalid);
+    radiance
+}
+
+impl RenderContext {
+    /// One sample of pixel (`x`, `y`): its radiance per term.
+    pub fn sample_pixel(
+        &self,
+        x: u32,
+        y: u32,
+        stream: &SampleStream,
+        counts: &mut RayCounts,
+    ) -> TermRadiance {
+        self.sample_pixel_terms(x, y, stream, counts, self.settings.terms)
+    }
+
+    /// [`RenderContext::sample_pixel`] for the terms of `terms` only (a
+    /// subset of the settings' terms): the others come out zero and their
+    /// work is skipped. A term's value does not depend on which others are
+    /// computed: each random dimension belongs to one vertex and one use.
+    pub fn sample_pixel_terms(
+        &self,
+        x: u32,
+        y: u32,
+        stream: &SampleStream,
+        counts: &mut RayCounts,
+        terms: TermSet,
+    ) -> TermRadiance {
+        let ray = self.camera.generate(x, y, stream.uniform2(dim::PIXEL));
+        let terms = terms.intersection(self.settings.terms);
+        let radiance = match self.settings.integrator {
+            Integrator::Fast => {
+                let splits = self.continuations.at(x, y);
+                fast::radiance(self, ray, stream, terms, splits, counts)
+            }
+            Integrator::Lecture => lecture::radiance(self, &ray, stream, terms),
+        };
+        guard_sample(radiance, counts)
+    }
+
+    /// Radiance arriving along `ray` (unit direction), per term, with the
+    /// continuations of the whole image; unguarded.
+    pub fn trace(&self, ray: Ray, stream: &SampleStream, counts: &mut RayCounts) -> TermRadiance {
+        let terms = self.settings.terms;
+        match self.settings.integrator {
+            Integrator::Fast => {
+                fast::radiance(self, ray, stream, terms, self.continuations.count, counts)
+            }
+            Integrator::Lecture => lecture::radiance(self, &ray, stream, terms),
+        }
+    }
+}

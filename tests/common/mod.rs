@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use lumiere::geometry::Ray;
 use lumiere::render::{Budget, RenderStats, render};
-use lumiere::transport::fast::RayCounts;
+use lumiere::transport::counts::RayCounts;
 use lumiere::transport::sampling::SampleStream;
 use lumiere::{Film, RenderContext, RenderSettings, Scene, Term, TermSet};
 

@@ -37,7 +37,8 @@ use crate::render::export::{load_exr, save_image};
 use crate::render::settings::{Adaptive, DisplaySettings, LightSampling, RenderSettings, Sampler};
 use crate::render::{Budget, render};
 use crate::scene::{Scene, builtin};
-use crate::transport::splitting::{Continuations, choose_indirect_samples};
+use crate::transport::continuations::Continuations;
+use crate::transport::splitting::choose_indirect_samples;
 use crate::{Film, RenderContext};
 
 use super::csv::ErrorRow;

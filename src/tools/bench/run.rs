@@ -7,6 +7,7 @@ use std::sync::Arc;
 use crate::RenderContext;
 use crate::render::settings::RenderSettings;
 use crate::scene::builtin;
+use crate::transport::splitting::choose_continuations;
 
 use super::csv::{ErrorRow, error_csv, read_error_csv, write_text};
 use super::error_curve::{
@@ -118,7 +119,8 @@ pub fn run(
     }
     if config.sections.contains(&Section::Throughput) {
         progress.message("throughput: renderer and replay");
-        let context = RenderContext::new(scene.clone(), config.settings().clone());
+        let mut context = RenderContext::new(scene.clone(), config.settings().clone());
+        choose_continuations(&mut context);
         let throughput = measure_throughput(
             &context,
             config.throughput_passes,

@@ -24,6 +24,7 @@ use serde_json::json;
 use crate::render::settings::RenderSettings;
 use crate::render::{Budget, render};
 use crate::scene::{Material, Scene, builtin, gltf};
+use crate::transport::splitting::choose_continuations;
 use crate::{Film, RenderContext};
 
 use super::memory::{MemoryUse, measure};
@@ -308,7 +309,8 @@ fn triangle_row(
         let scene = load()?;
         let loaded = start.elapsed().as_secs_f64();
         let start = Instant::now();
-        let context = RenderContext::new(Arc::new(scene), settings.clone());
+        let mut context = RenderContext::new(Arc::new(scene), settings.clone());
+        choose_continuations(&mut context);
         Ok((context, loaded, start.elapsed().as_secs_f64()))
     });
     let (context, load_seconds, build_seconds) = built?;
@@ -363,7 +365,8 @@ pub fn measure_scaling(
         let pool = thread_pool(threads)?;
         let settings = sized(&bench.settings, size, size);
         let start = Instant::now();
-        let context = RenderContext::new(scene.clone(), settings);
+        let mut context = RenderContext::new(scene.clone(), settings);
+        choose_continuations(&mut context);
         let build_seconds = start.elapsed().as_secs_f64();
         let (render_seconds, rays) = pool.install(|| time_render(&context, bench.spp));
         Ok(ScalingRow {

@@ -28,7 +28,8 @@ use rayon::prelude::*;
 use crate::geometry::Ray;
 use crate::geometry::accel::{Accel, Query};
 use crate::render::{Budget, render, sample_stream};
-use crate::transport::fast::{PathLog, PathSegment, RayCounts, SegmentKind};
+use crate::transport::counts::RayCounts;
+use crate::transport::path_log::{PathLog, PathSegment, SegmentKind};
 use crate::{Film, RenderContext};
 
 /// The kinds of rays the renderer traces, as counted by [`RayCounts`].
