@@ -14,6 +14,7 @@ use lumiere::analysis::path_view::RayRole;
 use lumiere::app::probe_view::PROBE_WINDOW_ID;
 use lumiere::app::{LumiereApp, ViewOptions};
 use lumiere::render::progressive::Snapshot;
+use lumiere::render::settings::Integrator;
 use lumiere::{BrdfOverride, LightMode, RenderSettings, Term};
 
 fn harness() -> Harness<'static, LumiereApp> {
@@ -91,6 +92,34 @@ fn light_mode_and_brdf_controls_change_the_settings_and_restart() {
     wait_for(&mut harness, "another restart", |s| {
         s.restarts > restarted.restarts
     });
+}
+
+#[test]
+fn the_lecture_integrator_is_a_choice_of_the_sampling_group() {
+    let mut harness = harness();
+    let fast = wait_for(&mut harness, "16 spp", |s| s.samples_per_pixel() >= 16);
+    harness.get_by_label("integrator").click();
+    harness.run_steps(2);
+    harness.get_by_label("lecture").click();
+    harness.run_steps(2);
+    assert_eq!(
+        harness.state().state.settings.integrator,
+        Integrator::Lecture
+    );
+    let lecture = wait_for(&mut harness, "16 spp of the lecture's", |s| {
+        s.restarts > fast.restarts
+            && s.samples_per_pixel() >= 16
+            && s.source
+                .as_ref()
+                .is_some_and(|source| source.settings.integrator == Integrator::Lecture)
+    });
+    // both estimate the same image: their means agree within their noise
+    let mean = |s: &Snapshot| {
+        let sum: f64 = s.radiance.iter().map(|p| (p[0] + p[1] + p[2]) as f64).sum();
+        sum / s.radiance.len() as f64
+    };
+    let (a, b) = (mean(&fast), mean(&lecture));
+    assert!(a > 0.0 && (a - b).abs() < 0.1 * a, "fast {a}, lecture {b}");
 }
 
 #[test]

@@ -10,24 +10,28 @@ use super::{LumiereApp, display, interact, reference, split};
 use crate::analysis::noise::{DisplayMode, NoiseSource, Scale};
 use crate::render::progressive::Snapshot;
 use crate::render::settings::{
-    Adaptive, BrdfOverride, IndirectSampling, LightMode, LightSampling, LightSelection,
-    MAX_SAMPLES_PER_VERTEX, MisHeuristic, Sampler, Term, Tonemap,
+    Adaptive, BrdfOverride, IndirectSampling, Integrator, LightMode, LightSampling, LightSelection,
+    MAX_SAMPLES_PER_VERTEX, MisHeuristic, RenderSettings, Sampler, Term, Tonemap,
 };
 
 /// French name and formula of each term, shown on hover (from the course).
 fn term_tooltip(term: Term) -> &'static str {
     match term {
         Term::L0 => {
-            "Emission (fr: émission)\nL0(p, ωo) = Le(p, ωo)\nThe light emitted by the surface the camera sees."
+            "Emission (fr: émission)\nL0(p, ωo) = Le(p, ωo)\nThe light emitted by the surface the camera sees.\n\
+             Computed in transport/lecture.rs: emission"
         }
         Term::L1 => {
-            "Direct lighting (fr: éclairage direct)\nL1 = Σ_s ∫_Ωs Le(q, −ω) fr(p, ω→ωo) |cos θ| dω\nLight from the sources, reflected once."
+            "Direct lighting (fr: éclairage direct)\nL1 = Σ_s ∫_Ωs Le(q, −ω) fr(p, ω→ωo) |cos θ| dω\nLight from the sources, reflected once.\n\
+             Computed in transport/lecture.rs: direct_lighting"
         }
         Term::L2 => {
-            "Indirect lighting (fr: éclairage indirect)\nL2 = ∫_(Ω+ − ΩS) L_direct(q, −ω) fr(p, ω→ωo) |cos θ| dω\nLight reflected twice: q's direct lighting, reflected at p."
+            "Indirect lighting (fr: éclairage indirect)\nL2 = ∫_(Ω+ − ΩS) L_direct(q, −ω) fr(p, ω→ωo) |cos θ| dω\nLight reflected twice: q's direct lighting, reflected at p.\n\
+             Computed in transport/lecture.rs: radiance_by_term (l[2] = …), from bounce and direct_lighting at q"
         }
         Term::L3Plus => {
-            "Three reflections or more (fr: trois réflexions et plus)\nL3+ = L − L0 − L1 − L2\nThe rest of the full solution."
+            "Three reflections or more (fr: trois réflexions et plus)\nL3+ = L − L0 − L1 − L2\nThe rest of the full solution.\n\
+             Computed in transport/lecture.rs: beyond_two_reflections"
         }
     }
 }
@@ -259,64 +263,101 @@ fn sampling_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             let settings = &mut app.state.settings;
             combo(
                 ui,
-                "direct (L1)",
-                &mut settings.light_sampling,
-                &LightSampling::ALL,
-                light_sampling_hint,
+                "integrator",
+                &mut settings.integrator,
+                &Integrator::ALL,
+                integrator_hint,
             );
-            ui.add_enabled_ui(settings.light_sampling == LightSampling::Mis, |ui| {
-                ui.horizontal(|ui| {
-                    ui.label("MIS weights");
-                    for heuristic in MisHeuristic::ALL {
-                        ui.radio_value(&mut settings.mis_heuristic, heuristic, heuristic.label())
-                            .on_hover_text(match heuristic {
-                                MisHeuristic::Balance => "w = p_light / (p_light + p_brdf)",
-                                MisHeuristic::Power => "w = p_light² / (p_light² + p_brdf²)",
-                            });
-                    }
-                });
-            });
+            // the strategies below are the fast integrator's
+            let fast = settings.integrator == Integrator::Fast;
+            ui.add_enabled_ui(fast, |ui| strategies_ui(ui, settings));
             combo(
                 ui,
-                "indirect (L2, L3+)",
-                &mut settings.indirect_sampling,
-                &IndirectSampling::ALL,
-                indirect_sampling_hint,
+                "sampler",
+                &mut settings.sampler,
+                &Sampler::ALL,
+                sampler_hint,
             );
-            ui.horizontal(|ui| {
-                ui.add(
-                    egui::DragValue::new(&mut settings.light_samples)
-                        .range(1..=MAX_SAMPLES_PER_VERTEX)
-                        .prefix("light samples "),
-                )
-                .on_hover_text("Light samples per vertex (shadow rays, or gathered directions), each weighted 1/N");
-                ui.add_enabled(
-                    !settings.auto_indirect_samples,
-                    egui::DragValue::new(&mut settings.indirect_samples)
-                        .range(1..=MAX_SAMPLES_PER_VERTEX)
-                        .prefix("indirect samples "),
-                )
-                .on_hover_text("Continuations per first hit (splitting), each weighted 1/M");
-                ui.checkbox(&mut settings.auto_indirect_samples, "auto")
-                    .on_hover_text(
-                        "Let a short pilot choose the continuations per first hit that \
-                         reach a given relative error soonest (more when the indirect \
-                         light is the noisier part)",
-                    );
-            });
-            ui.horizontal(|ui| {
-                ui.label("pick lights");
-                for selection in LightSelection::ALL {
-                    ui.radio_value(&mut settings.light_selection, selection, selection.label())
-                        .on_hover_text(match selection {
-                            LightSelection::Uniform => "Every light with the same probability",
-                            LightSelection::Power => "In proportion to emitted power",
-                        });
-                }
-            });
-            combo(ui, "sampler", &mut settings.sampler, &Sampler::ALL, sampler_hint);
             adaptive_ui(ui, &mut settings.adaptive);
         });
+}
+
+/// The fast integrator's estimators: direct and indirect strategies, MIS
+/// weights, samples per vertex, splitting and light selection.
+fn strategies_ui(ui: &mut egui::Ui, settings: &mut RenderSettings) {
+    combo(
+        ui,
+        "direct (L1)",
+        &mut settings.light_sampling,
+        &LightSampling::ALL,
+        light_sampling_hint,
+    );
+    ui.add_enabled_ui(settings.light_sampling == LightSampling::Mis, |ui| {
+        ui.horizontal(|ui| {
+            ui.label("MIS weights");
+            for heuristic in MisHeuristic::ALL {
+                ui.radio_value(&mut settings.mis_heuristic, heuristic, heuristic.label())
+                    .on_hover_text(match heuristic {
+                        MisHeuristic::Balance => "w = p_light / (p_light + p_brdf)",
+                        MisHeuristic::Power => "w = p_light² / (p_light² + p_brdf²)",
+                    });
+            }
+        });
+    });
+    combo(
+        ui,
+        "indirect (L2, L3+)",
+        &mut settings.indirect_sampling,
+        &IndirectSampling::ALL,
+        indirect_sampling_hint,
+    );
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::DragValue::new(&mut settings.light_samples)
+                .range(1..=MAX_SAMPLES_PER_VERTEX)
+                .prefix("light samples "),
+        )
+        .on_hover_text(
+            "Light samples per vertex (shadow rays, or gathered directions), each weighted 1/N",
+        );
+        ui.add_enabled(
+            !settings.auto_indirect_samples,
+            egui::DragValue::new(&mut settings.indirect_samples)
+                .range(1..=MAX_SAMPLES_PER_VERTEX)
+                .prefix("indirect samples "),
+        )
+        .on_hover_text("Continuations per first hit (splitting), each weighted 1/M");
+        ui.checkbox(&mut settings.auto_indirect_samples, "auto")
+            .on_hover_text(
+                "Let a short pilot choose the continuations per first hit that \
+                         reach a given relative error soonest (more when the indirect \
+                         light is the noisier part)",
+            );
+    });
+    ui.horizontal(|ui| {
+        ui.label("pick lights");
+        for selection in LightSelection::ALL {
+            ui.radio_value(&mut settings.light_selection, selection, selection.label())
+                .on_hover_text(match selection {
+                    LightSelection::Uniform => "Every light with the same probability",
+                    LightSelection::Power => "In proportion to emitted power",
+                });
+        }
+    });
+}
+
+fn integrator_hint(integrator: Integrator) -> &'static str {
+    match integrator {
+        Integrator::Lecture => {
+            "The lecture's estimator (transport/lecture.rs): L0 + L1 + L2 + L3+ as the slides \
+             write them, one light sample and one BRDF direction per point; the strategies \
+             below do not apply. The path view still draws the fast integrator's paths."
+        }
+        Integrator::Fast => {
+            "The fast path tracer (transport/fast.rs): the strategies below, MIS, splitting \
+             and skipped work; it agrees with the lecture's estimator in the mean"
+        }
+    }
 }
 
 /// Adaptive sampling: a checkbox, then the threshold (in percent) and the

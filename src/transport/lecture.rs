@@ -42,7 +42,7 @@ pub fn radiance(
     stream: &SampleStream,
     terms: TermSet,
 ) -> TermRadiance {
-    let mut l = terms_of_sample(context, camera_ray, stream, terms);
+    let mut l = radiance_by_term(context, camera_ray, stream, terms);
     for term in Term::ALL {
         if !terms.contains(term) {
             l[term.index()] = Vec3::ZERO;
@@ -52,7 +52,7 @@ pub fn radiance(
 }
 
 /// Every term up to the deepest one of `terms`.
-fn terms_of_sample(
+fn radiance_by_term(
     context: &RenderContext,
     camera_ray: &Ray,
     stream: &SampleStream,

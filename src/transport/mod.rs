@@ -80,7 +80,13 @@ impl RenderContext {
                 let splits = self.continuations.at(x, y);
                 fast::radiance(self, ray, stream, terms, splits, counts)
             }
-            Integrator::Lecture => lecture::radiance(self, &ray, stream, terms),
+            Integrator::Lecture => {
+                // the lecture integrator counts nothing itself: its samples
+                // are counted here, as camera rays (adaptive sampling and the
+                // viewer's progress read them)
+                counts.camera += 1;
+                lecture::radiance(self, &ray, stream, terms)
+            }
         };
         guard_sample(radiance, counts)
     }
