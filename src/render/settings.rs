@@ -398,7 +398,7 @@ impl Default for Adaptive {
             threshold: 0.01,
             // fewer samples often underestimate the error of a pixel (a
             // bright bounce not yet drawn): it stops early and keeps a large
-            // error (measured in docs/benchmarks.md)
+            // error
             min_samples: 128,
         }
     }

@@ -521,10 +521,10 @@ fn setup(case: Case, effort: Effort) -> Setup {
         Case::TinyScale => furnace(1e-4, Vec3::ZERO),
         Case::HugeScale => furnace(1e5, Vec3::ZERO),
         // f32 positions 1e5 m out are 7.8 mm apart and rays leave the surface
-        // about 2 cm out: the MIS weights of a light point, measured from the
+        // about 2 cm out: the MIS weights of a light point, taken from the
         // hit point, and of the direction traced from the offset origin no
-        // longer sum to one, which loses 0.5 % (measured: area sampling
-        // alone and BRDF sampling alone are within the noise)
+        // longer sum to one, which loses about 0.5 % (area sampling alone
+        // and BRDF sampling alone keep the mean)
         Case::FarFromOrigin => Setup {
             tolerance: 0.015,
             ..furnace(10.0, Vec3::new(1e5, -1e5, 1e5))

@@ -80,20 +80,19 @@ use crate::render::context::RenderContext;
 use crate::render::settings::{IndirectSampling, LightSampling, MisHeuristic, Term, TermSet};
 use crate::transport::brdf::{Brdf, BrdfSample};
 use crate::transport::counts::RayCounts;
-use crate::transport::path_log::{PathLog, PathSegment, SegmentKind};
+use crate::transport::path_log::{PathLog, SegmentKind};
 use crate::transport::sampling::{
     SampleStream, UNIFORM_HEMISPHERE_PDF, balance_heuristic, cosine_hemisphere,
     cosine_hemisphere_pdf, dim, power_heuristic, uniform_hemisphere,
 };
 use crate::transport::surface::SurfacePoint;
+use crate::transport::tally::Tally;
 use crate::transport::{TermRadiance, guard_sample};
 
 /// The reflections after which Russian roulette may end a path: from the
 /// fourth on, so that it only touches L3+ and never its largest part, the
 /// third reflection's (its light samples and what the continuation after
-/// it hits). Starting after the third took 8–15% longer to reach relMSE 10⁻³
-/// on the Cornell box with every term (Sobol, 256×256, `docs/benchmarks.md`):
-/// the roulette's weights 1/q add noise where L3+ is largest.
+/// it hits), where the roulette's weights 1/q would add the most noise.
 pub const ROULETTE_FROM_REFLECTION: u32 = 4;
 
 /// What the continuations of one pilot sample brought (`RenderContext::pilot_sample`).
@@ -216,14 +215,13 @@ struct Vertex {
     index: u32,
 }
 
-/// The state of one sample: the context it reads, the counters and the log
-/// it writes, and the radiance gathered so far. Its small steps are inlined
+/// The state of one sample: the context it reads, its bookkeeping (counters
+/// and log), and the radiance gathered so far. Its small steps are inlined
 /// into the path loop (`#[inline(always)]`): split apart, the per-vertex
 /// calls and moves cost the defaults several percent.
 struct Walk<'a> {
     context: &'a RenderContext,
-    counts: &'a mut RayCounts,
-    log: Option<&'a mut PathLog>,
+    tally: Tally<'a>,
     radiance: TermRadiance,
     terms: TermSet,
     last_reflection: u32,
@@ -244,8 +242,7 @@ impl<'a> Walk<'a> {
         let terms = settings.terms;
         Self {
             context,
-            counts,
-            log,
+            tally: Tally::new(counts, log, context.escape_length),
             radiance: [Vec3::ZERO; Term::COUNT],
             terms,
             last_reflection: terms
@@ -284,12 +281,11 @@ impl<'a> Walk<'a> {
         splits: u32,
         mut split: Option<&mut ContinuationSplit>,
     ) -> TermRadiance {
-        self.counts.camera += 1;
-        self.counts.per_term[lowest_selected(self.terms, 0)] += 1;
+        self.tally.camera_ray(lowest_selected(self.terms, 0));
         let first = self.follow(ray, 0, Vec3::ONE, EmissionWeight::One, SegmentKind::Camera);
         let Some(first) = &first else {
             if let Some(split) = split {
-                split.first_rays = self.counts.total();
+                split.first_rays = self.tally.rays_so_far();
                 split.continuation_rays = split.first_rays;
             }
             return self.radiance;
@@ -297,7 +293,7 @@ impl<'a> Walk<'a> {
         let gather = self.gather_plan(first, splits);
         self.direct_lighting(first, Vec3::ONE, stream, gather);
         if let Some(split) = split.as_deref_mut() {
-            split.first_rays = self.counts.total();
+            split.first_rays = self.tally.rays_so_far();
         }
         self.splits = splits as f32;
         for m in 0..splits {
@@ -315,7 +311,7 @@ impl<'a> Walk<'a> {
             }
         }
         if let Some(split) = split {
-            split.continuation_rays = self.counts.total();
+            split.continuation_rays = self.tally.rays_so_far();
         }
         self.radiance
     }
@@ -348,7 +344,7 @@ impl<'a> Walk<'a> {
         let term = Term::of_reflections(reflections);
         let counted = weight != EmissionWeight::Zero && self.terms.contains(term);
         let Some(hit) = self.accel().closest_hit(&ray) else {
-            self.record_escape(&ray, kind, term);
+            self.tally.escaped(&ray, kind, term);
             return None;
         };
         let mut emitted = Vec3::ZERO;
@@ -372,7 +368,7 @@ impl<'a> Walk<'a> {
             }
         };
         self.radiance[term.index()] += emitted;
-        self.record(
+        self.tally.segment(
             &ray,
             ray.at(hit.t()),
             kind,
@@ -397,7 +393,7 @@ impl<'a> Walk<'a> {
         term: Term,
     ) {
         let search = self.accel().search_emitters(ray);
-        self.counts.skipped.scene_searches += u64::from(!search.scene_searched);
+        self.tally.light_search(search.scene_searched);
         let (le, w) = match search.hit {
             None => (Vec3::ZERO, 0.0),
             Some(Hit::Sphere { sphere, .. }) => self.sphere_emission(sphere, ray.direction, weight),
@@ -412,8 +408,10 @@ impl<'a> Walk<'a> {
         };
         let added = scale * le * w;
         self.radiance[term.index()] += added;
-        if self.log.is_some() {
-            self.record_light_search(ray, kind, term, le, added);
+        if self.tally.is_logging() {
+            let accel = self.accel();
+            self.tally
+                .light_search_segment(accel, ray, kind, term, le, added);
         }
     }
 
@@ -447,7 +445,8 @@ impl<'a> Walk<'a> {
             && self.terms.contains_reflections(vertex.index + 1)
             && gather_directions(settings.light_sampling).is_some();
         if wanted && !self.can_hit_lights {
-            self.counts.skipped.gathered += u64::from(settings.light_samples.max(1));
+            self.tally
+                .no_gathered_directions(settings.light_samples.max(1));
         }
         // M > 1 continuations double as gathered directions only where
         // they are traced anyway, to serve a later term
@@ -488,7 +487,7 @@ impl<'a> Walk<'a> {
                 .settings
                 .terms
                 .contains_reflections(vertex.index + 1);
-            self.counts.skipped.direct_lighting += u64::from(settings_off);
+            self.tally.no_direct_lighting(settings_off);
             return;
         }
         let settings = &self.context.settings;
@@ -559,12 +558,10 @@ impl<'a> Walk<'a> {
         let contribution = throughput * f_cos * light.radiance / light.pdf;
         // a light behind the surface (or a zero BRDF) gets no shadow ray
         if contribution.max_element() <= 0.0 || light.wi.dot(vertex.ng) <= 0.0 {
-            self.counts.skipped.shadow_rays += 1;
+            self.tally.no_shadow_ray();
             return;
         }
         let term = Term::of_reflections(vertex.index + 1);
-        self.counts.shadow += 1;
-        self.counts.per_term[term.index()] += 1;
         let occluded = self
             .accel()
             .occluded(&light.shadow_ray, light.target_sphere);
@@ -578,18 +575,9 @@ impl<'a> Walk<'a> {
             added = contribution * weight;
             self.radiance[term.index()] += added;
         }
-        let ray = light.shadow_ray;
-        self.record(
-            &ray,
-            ray.at(ray.t_max),
-            SegmentKind::Shadow {
-                occluded,
-                target_sphere: light.target_sphere,
-            },
-            Query::Occlusion,
-            term,
-            added,
-        );
+        let (ray, target_sphere) = (light.shadow_ray, light.target_sphere);
+        self.tally
+            .shadow_ray(&ray, occluded, target_sphere, term, added);
     }
 
     /// One direction gathered at `vertex` (traced on its own), counted if it finds a light.
@@ -612,8 +600,7 @@ impl<'a> Walk<'a> {
             return; // below the geometric surface: shading-normal artefact
         }
         let term = Term::of_reflections(vertex.index + 1);
-        self.counts.gather += 1;
-        self.counts.per_term[term.index()] += 1;
+        self.tally.gathered_direction(term);
         let ray = vertex.point.spawn_ray(wi);
         let weight = self.gather_weight(vertex, sample.pdf);
         let kind = SegmentKind::Gather { hit_light: false };
@@ -667,7 +654,7 @@ impl<'a> Walk<'a> {
         if next >= self.last_reflection
             && !(finds_lights && self.can_hit_lights && self.terms.contains_reflections(next))
         {
-            self.counts.skipped.continuations += 1;
+            self.tally.no_continuation();
             return None;
         }
         let base = dim::vertex_base(vertex.index);
@@ -696,13 +683,12 @@ impl<'a> Walk<'a> {
         if next >= ROULETTE_FROM_REFLECTION {
             let survival = (*throughput * self.splits).max_element().min(0.95);
             if stream.uniform(base + dim::RUSSIAN_ROULETTE) >= survival {
-                self.counts.skipped.roulette += 1;
+                self.tally.ended_by_roulette();
                 return None;
             }
             *throughput /= survival;
         }
-        self.counts.bounce += 1;
-        self.counts.per_term[lowest_selected(self.terms, next)] += 1;
+        self.tally.bounce(lowest_selected(self.terms, next));
         let ray = vertex.point.spawn_ray(wi);
         if next >= self.last_reflection {
             // the path ends where this ray lands: it only looks for a light
@@ -763,73 +749,8 @@ impl<'a> Walk<'a> {
         }
     }
 
-    // ── recording ────────────────────────────────────────────────────
-
     fn accel(&self) -> &'a Accel {
         &self.context.accel
-    }
-
-    #[inline(always)]
-    fn record(
-        &mut self,
-        ray: &Ray,
-        to: Vec3,
-        kind: SegmentKind,
-        query: Query,
-        term: Term,
-        radiance: Vec3,
-    ) {
-        if let Some(log) = self.log.as_deref_mut() {
-            log.segments.push(PathSegment {
-                from: ray.origin,
-                ray: *ray,
-                to,
-                kind,
-                query,
-                term,
-                radiance,
-            });
-        }
-    }
-
-    /// Records a closest-hit ray that left the scene (it added nothing).
-    #[cold]
-    fn record_escape(&mut self, ray: &Ray, kind: SegmentKind, term: Term) {
-        self.counts.escaped += 1;
-        if self.log.is_some() {
-            let to = self.escape_point(ray);
-            self.record(ray, to, kind, Query::ClosestHit, term, Vec3::ZERO);
-        }
-    }
-
-    /// Where the drawing of a ray that left the scene stops: one scene diagonal away.
-    fn escape_point(&self, ray: &Ray) -> Vec3 {
-        ray.origin + ray.direction.normalize_or_zero() * self.context.escape_length
-    }
-
-    /// Records a ray that looked for a light, which met emission `le` and
-    /// added `added`. Where it stops comes from a closest-hit search, made
-    /// for the log only.
-    #[cold]
-    fn record_light_search(
-        &mut self,
-        ray: &Ray,
-        kind: SegmentKind,
-        term: Term,
-        le: Vec3,
-        added: Vec3,
-    ) {
-        let to = match self.accel().closest_hit(ray) {
-            Some(hit) => ray.at(hit.t()),
-            None => self.escape_point(ray),
-        };
-        let kind = match kind {
-            SegmentKind::Gather { .. } => SegmentKind::Gather {
-                hit_light: le.max_element() > 0.0,
-            },
-            other => other,
-        };
-        self.record(ray, to, kind, Query::VisibleEmitter, term, added);
     }
 }
 

@@ -20,6 +20,7 @@ pub mod path_log;
 pub mod sampling;
 pub mod splitting;
 pub mod surface;
+mod tally;
 
 use glam::Vec3;
 

@@ -34,10 +34,7 @@
 //! near the optimum, and the model is that of independent numbers: with
 //! them M* is rounded to the nearest power of two. The stratified and
 //! Sobol samplers spread a sample's continuations over consecutive points,
-//! which cancels their noise faster than 1/M: there it is rounded up. On
-//! the Cornell box (L0+L1+L2, 256², M* ≈ 2.8) the time to relMSE 10⁻³ was,
-//! with M = 1, 2, 4, 8: Sobol 3.0, 2.4, 2.05, 2.5 s; with independent
-//! numbers relMSE × time at 64 spp was 8.0, 7.2, 7.5 (×10⁻³ s) for M = 1, 2, 4.
+//! which cancels their noise faster than 1/M: there it is rounded up.
 //! Scenes whose continuations bring nothing (terms L0, L1 only, mirrors
 //! everywhere) keep M = 1 without a pilot.
 //!

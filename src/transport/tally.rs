@@ -1,0 +1,190 @@
+//! The fast integrator's bookkeeping, kept out of its path loop: what a
+//! sample counts (rays by kind and by term, work skipped, rays that left
+//! the scene) and, when asked, the log of every ray it traced. The path
+//! loop makes one call per event.
+
+use glam::Vec3;
+
+use crate::geometry::Ray;
+use crate::geometry::accel::{Accel, Query};
+use crate::render::settings::Term;
+use crate::transport::counts::RayCounts;
+use crate::transport::path_log::{PathLog, PathSegment, SegmentKind};
+
+/// The counters and the log one sample writes.
+pub(crate) struct Tally<'a> {
+    counts: &'a mut RayCounts,
+    log: Option<&'a mut PathLog>,
+    /// How far the log draws a ray that left the scene.
+    escape_length: f32,
+}
+
+impl<'a> Tally<'a> {
+    pub fn new(
+        counts: &'a mut RayCounts,
+        log: Option<&'a mut PathLog>,
+        escape_length: f32,
+    ) -> Self {
+        Self {
+            counts,
+            log,
+            escape_length,
+        }
+    }
+
+    /// Rays traced so far (the splitting pilot reads it between parts of a sample).
+    #[inline(always)]
+    pub fn rays_so_far(&self) -> u64 {
+        self.counts.total()
+    }
+
+    // ── rays traced, each under the index of the lowest term it serves
+
+    #[inline(always)]
+    pub fn camera_ray(&mut self, serves: usize) {
+        self.counts.camera += 1;
+        self.counts.per_term[serves] += 1;
+    }
+
+    #[inline(always)]
+    pub fn bounce(&mut self, serves: usize) {
+        self.counts.bounce += 1;
+        self.counts.per_term[serves] += 1;
+    }
+
+    #[inline(always)]
+    pub fn gathered_direction(&mut self, term: Term) {
+        self.counts.gather += 1;
+        self.counts.per_term[term.index()] += 1;
+    }
+
+    /// A shadow ray traced towards a light, and its segment in the log.
+    #[inline(always)]
+    pub fn shadow_ray(
+        &mut self,
+        ray: &Ray,
+        occluded: bool,
+        target_sphere: Option<u32>,
+        term: Term,
+        added: Vec3,
+    ) {
+        self.counts.shadow += 1;
+        self.counts.per_term[term.index()] += 1;
+        let kind = SegmentKind::Shadow {
+            occluded,
+            target_sphere,
+        };
+        self.segment(ray, ray.at(ray.t_max), kind, Query::Occlusion, term, added);
+    }
+
+    // ── work skipped
+
+    /// A light sample behind the surface, or that carried nothing: no shadow ray.
+    #[inline(always)]
+    pub fn no_shadow_ray(&mut self) {
+        self.counts.skipped.shadow_rays += 1;
+    }
+
+    /// A vertex's direct lighting not estimated, counted when the settings
+    /// leave its term out (not when adaptive sampling does).
+    #[inline(always)]
+    pub fn no_direct_lighting(&mut self, settings_off: bool) {
+        self.counts.skipped.direct_lighting += u64::from(settings_off);
+    }
+
+    /// `count` directions not gathered: no light can be hit.
+    #[inline(always)]
+    pub fn no_gathered_directions(&mut self, count: u32) {
+        self.counts.skipped.gathered += u64::from(count);
+    }
+
+    /// A continuation not traced: no selected term needs it.
+    #[inline(always)]
+    pub fn no_continuation(&mut self) {
+        self.counts.skipped.continuations += 1;
+    }
+
+    #[inline(always)]
+    pub fn ended_by_roulette(&mut self) {
+        self.counts.skipped.roulette += 1;
+    }
+
+    /// A search for a light, which searched the whole scene or not.
+    #[inline(always)]
+    pub fn light_search(&mut self, scene_searched: bool) {
+        self.counts.skipped.scene_searches += u64::from(!scene_searched);
+    }
+
+    // ── the log
+
+    /// Whether the sample's rays are logged.
+    #[inline(always)]
+    pub fn is_logging(&self) -> bool {
+        self.log.is_some()
+    }
+
+    /// One traced ray, from its origin to `to`, that added `radiance` to `term`.
+    #[inline(always)]
+    pub fn segment(
+        &mut self,
+        ray: &Ray,
+        to: Vec3,
+        kind: SegmentKind,
+        query: Query,
+        term: Term,
+        radiance: Vec3,
+    ) {
+        if let Some(log) = self.log.as_deref_mut() {
+            log.segments.push(PathSegment {
+                from: ray.origin,
+                ray: *ray,
+                to,
+                kind,
+                query,
+                term,
+                radiance,
+            });
+        }
+    }
+
+    /// A closest-hit ray that left the scene (it added nothing).
+    #[cold]
+    pub fn escaped(&mut self, ray: &Ray, kind: SegmentKind, term: Term) {
+        self.counts.escaped += 1;
+        if self.log.is_some() {
+            let to = self.escape_point(ray);
+            self.segment(ray, to, kind, Query::ClosestHit, term, Vec3::ZERO);
+        }
+    }
+
+    /// Logs a ray that looked for a light, which met emission `le` and
+    /// added `added`. Where it stops comes from a closest-hit search in
+    /// `accel`, made for the log only.
+    #[cold]
+    pub fn light_search_segment(
+        &mut self,
+        accel: &Accel,
+        ray: &Ray,
+        kind: SegmentKind,
+        term: Term,
+        le: Vec3,
+        added: Vec3,
+    ) {
+        let to = match accel.closest_hit(ray) {
+            Some(hit) => ray.at(hit.t()),
+            None => self.escape_point(ray),
+        };
+        let kind = match kind {
+            SegmentKind::Gather { .. } => SegmentKind::Gather {
+                hit_light: le.max_element() > 0.0,
+            },
+            other => other,
+        };
+        self.segment(ray, to, kind, Query::VisibleEmitter, term, added);
+    }
+
+    /// Where the drawing of a ray that left the scene stops: one scene diagonal away.
+    fn escape_point(&self, ray: &Ray) -> Vec3 {
+        ray.origin + ray.direction.normalize_or_zero() * self.escape_length
+    }
+}
