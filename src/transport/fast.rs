@@ -1,75 +1,37 @@
-//! The path tracer: one walk per sample that files every contribution under its term.
+//! The fast path tracer: one walk per sample that files every contribution
+//! under its term; the lecture integrator (`lecture.rs`) is its oracle.
 //!
 //! A path leaves the camera; after k reflections it carries the throughput
-//! β = Π f cos / pdf of the directions that continued it. Light reaches the
-//! camera along it in three ways, each filed under the term of its number of
-//! reflections (`Term::of_reflections`):
+//! β = Π f cos θ / pdf. Light reaches the camera along it in three ways,
+//! each filed under the term of its number of reflections:
 //!
-//! * **emission hit** — the path's k-th segment lands on an emitter:
-//!   β · L_e · w, filed under L_k (k = 0 is L0, the emitter seen directly, w = 1);
-//! * **light sample** — at the vertex of the (k+1)-th reflection a light is
-//!   drawn: β · f · L_i · cos θ / pdf_light · w_light, under L_{k+1};
-//! * **gathered direction** — at that vertex a direction is drawn (by the
-//!   BRDF, or uniformly on the hemisphere) and traced: if it lands on an
-//!   emitter, β · f · L_e · cos θ / pdf_gather · w_gather, under L_{k+1}.
+//! * **emission hit**: the k-th segment lands on an emitter,
+//!   β · L_e · w under L_k (L0: the emitter seen directly, w = 1);
+//! * **light sample** at the vertex of the (k+1)-th reflection:
+//!   β · f · L_i · cos θ / pdf_light · w_light under L_{k+1};
+//! * **gathered direction** drawn there (by the BRDF or uniformly) that
+//!   lands on an emitter: β · f · L_e · cos θ / pdf_gather · w_gather.
 //!
-//! ## Direct lighting at a vertex (`RenderSettings::light_sampling`)
+//! For an extended light the two weights sum to one, so it is counted once:
 //!
-//! For an extended light (triangle or sphere) the weights of the two sample
-//! kinds sum to one, so each light is counted once:
-//!
-//! | strategy | w_light | w_gather |
+//! | `light_sampling` | w_light | w_gather |
 //! |---|---|---|
-//! | `area`, `solid-angle` | 1 | 0 (no direction is gathered) |
-//! | `brdf`, `hemisphere` | 0 (no shadow ray) | 1 |
-//! | `mis` | h(pdf_light, pdf_brdf) | h(pdf_brdf, pdf_light) |
+//! | `area`, `solid-angle` | 1 | 0 |
+//! | `brdf`, `hemisphere` | 0 | 1 |
+//! | `mis` | h(pdf_light, n·pdf_brdf) | h(n·pdf_brdf, pdf_light) |
 //!
-//! with h the balance heuristic p_a / (p_a + p_b) or the power heuristic
-//! p_a² / (p_a² + p_b²) (`mis_heuristic`); pdf_light is the density with which
-//! light sampling picks that point (selection included), pdf_brdf the BRDF's.
-//! A Dirac light (point, spot, directional) cannot be hit: its light samples
-//! keep w_light = 1 under every strategy. A Dirac BRDF (mirror) cannot sample
-//! a light: no light sample, and the emission hit of its continuation keeps
-//! w = 1. With `light_samples` = N, the vertex draws N light samples and/or N
-//! gathered directions, each weighted 1/N, the j-th from `stream.split(j, N)`.
+//! h is the balance or power heuristic, n the BRDF samples per light sample
+//! (the M continuations of a split first hit double as gathered directions:
+//! Veach's multi-sample MIS). Dirac lights keep w_light = 1; a mirror has no
+//! light sample and its continuation's emission hit keeps w = 1.
 //!
-//! **Reuse.** When N = 1 and the continuations are drawn from the gathering
-//! distribution (`brdf`/`mis` with `indirect_sampling brdf`, `hemisphere`
-//! with `indirect_sampling uniform`), the continuation rays are the
-//! gathered directions: their emission hits get w_gather. With M > 1
-//! continuations (splitting at the first hit, where they are traced anyway
-//! for the later terms) that is one light sample against M BRDF samples of
-//! weight 1/M each, and multi-sample MIS (Veach) compares pdf_light with
-//! M·pdf_brdf in both weights, which still sum to one. Otherwise gathered
-//! directions are rays of their own and the continuation's emission hits
-//! get w = 0 (the light is estimated by the vertex's own samples), except
-//! after a mirror.
-//!
-//! ## The continuation (`indirect_sampling`, `indirect_samples`)
-//!
-//! The next direction is drawn uniformly on the hemisphere (pdf 1/2π), by
-//! cosine (cos θ/π) or by the BRDF's own routine (a mirror always uses its
-//! own); β *= f cos θ / pdf. At the first hit the path splits into M =
-//! `indirect_samples` continuations (with `--indirect-samples auto`, the
-//! pilot's count for the pixel's region: `splitting`), each the rest of a full path driven by
-//! `stream.split(m, M)` with β / M. Russian roulette starts after the fourth
-//! reflection (it only touches L3+), with survival min(M β, 0.95): the
-//! sample's throughput, so that splitting does not shorten the
-//! continuations (which would undo it for L3+). `max_bounces` caps the
-//! reflections.
-//!
-//! ## Work skipped
-//!
-//! Nothing is traced for a term that is off: no light sample or gathered
-//! direction at a vertex whose next term is off (`--terms L2` traces no shadow
-//! ray at the first hit), no vertex beyond the last term needed (`--terms L0`
-//! traces camera rays only), no continuation whose only use would be an
-//! emission hit of weight 0, no shadow ray for a light behind the surface,
-//! no gathered direction in a scene whose lights cannot be hit (points,
-//! spots, the sun). A direction traced only to find a light (a gathered one,
-//! or the path's last segment) asks [`Accel::search_emitters`], which
-//! searches the whole scene only if the ray meets a light. [`SkippedWork`]
-//! counts each.
+//! The continuation is drawn uniformly, by cosine or by the BRDF
+//! (`indirect_sampling`); at the first hit the path splits into M
+//! continuations, each with β / M (`indirect_samples`, or the pilot's count
+//! per region: `splitting.rs`). Russian roulette starts after the fourth
+//! reflection, on the sample's throughput M β so that splitting does not
+//! shorten the continuations. Work no selected term needs is skipped and
+//! counted (`tally.rs`). `docs/light-transport.md` gives the details.
 
 use glam::Vec3;
 
