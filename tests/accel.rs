@@ -5,7 +5,8 @@ use lumiere::geometry::Ray;
 use lumiere::geometry::accel::{Accel, Hit, Sphere};
 use lumiere::scene::builtin::uv_sphere;
 use lumiere::scene::{Material, Scene};
-use lumiere::transport::sampling::{SampleStream, uniform_sphere};
+use lumiere::transport::sampler::SampleStream;
+use lumiere::transport::warps::uniform_sphere;
 
 fn random_point(stream: &SampleStream, d: u32, extent: f32) -> Vec3 {
     (Vec3::new(

@@ -1,6 +1,6 @@
 //! The warps against their densities, and the samplers against their promises.
 //!
-//! **Warps.** Each warp of `lumiere::transport::sampling` is checked by a χ² goodness-of-fit
+//! **Warps.** Each warp of `lumiere::transport::warps` is checked by a χ² goodness-of-fit
 //! test: N samples are binned, and the count of each bin is compared with N
 //! times the bin's probability, the integral of the warp's stated pdf over the
 //! bin (adaptive Simpson, not the warp's own inverse). Bins expecting fewer
@@ -23,10 +23,11 @@ use glam::{Vec2, Vec3};
 use lumiere::analysis::metrics::image_error;
 use lumiere::render::settings::Sampler;
 use lumiere::scene::builtin;
-use lumiere::transport::sampling::{
-    AliasTable, SampleStream, UNIFORM_HEMISPHERE_PDF, UNIFORM_SPHERE_PDF, concentric_disk,
-    cosine_hemisphere, cosine_hemisphere_pdf, phong_lobe, phong_lobe_pdf, uniform_cone,
-    uniform_cone_pdf, uniform_hemisphere, uniform_sphere, uniform_triangle,
+use lumiere::transport::sampler::SampleStream;
+use lumiere::transport::warps::{
+    AliasTable, UNIFORM_HEMISPHERE_PDF, UNIFORM_SPHERE_PDF, concentric_disk, cosine_hemisphere,
+    cosine_hemisphere_pdf, phong_lobe, phong_lobe_pdf, uniform_cone, uniform_cone_pdf,
+    uniform_hemisphere, uniform_sphere, uniform_triangle,
 };
 use lumiere::{RenderSettings, Term, TermSet};
 
@@ -689,7 +690,7 @@ fn sobol_points_fill_every_elementary_interval_once() {
                         (m + 1) * n
                     );
                 }
-                use lumiere::transport::sampling::dim;
+                use lumiere::transport::sampler::dim;
                 let pairs = [
                     dim::PIXEL,
                     dim::vertex_base(0) + dim::LIGHT_POSITION,

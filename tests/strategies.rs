@@ -16,7 +16,8 @@ use lumiere::scene::builtin::{self, furnace, point_in_sphere};
 use lumiere::scene::{Material, PunctualKind, PunctualLight, Scene};
 use lumiere::transport::counts::RayCounts;
 use lumiere::transport::path_log::{PathLog, SegmentKind};
-use lumiere::transport::sampling::{SampleStream, spherical_triangle, spherical_triangle_area};
+use lumiere::transport::sampler::SampleStream;
+use lumiere::transport::warps::{spherical_triangle, spherical_triangle_area};
 use lumiere::{Film, LightMode, RenderSettings, Term, TermSet};
 
 const ALBEDO: f32 = 0.5;

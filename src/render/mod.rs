@@ -28,7 +28,7 @@ use crate::render::film::Film;
 use crate::render::settings::{RenderSettings, Term};
 use crate::transport::TermRadiance;
 use crate::transport::counts::RayCounts;
-use crate::transport::sampling::SampleStream;
+use crate::transport::sampler::SampleStream;
 
 /// Rows per tile: small enough to balance two to many cores, large enough
 /// that scheduling costs nothing next to the paths.

@@ -21,7 +21,7 @@ use std::f32::consts::{FRAC_1_PI, PI};
 
 use crate::geometry::Frame;
 use crate::render::color::luminance;
-use crate::transport::sampling::{cosine_hemisphere, cosine_hemisphere_pdf, phong_lobe};
+use crate::transport::warps::{cosine_hemisphere, cosine_hemisphere_pdf, phong_lobe};
 
 /// A reflection model with its parameters resolved at one surface point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -172,7 +172,7 @@ fn pick_lobe(p: f32, u: Vec2) -> (bool, Vec2) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::transport::sampling::SampleStream;
+    use crate::transport::sampler::SampleStream;
 
     /// Monte Carlo estimate of the directional albedo ∫ f cos dω by BRDF sampling.
     fn albedo(brdf: &Brdf, wo: Vec3, n: u32) -> Vec3 {
@@ -231,9 +231,9 @@ mod tests {
         let mut sum_sq = 0.0;
         for i in 0..n {
             let s = SampleStream::new(2, 0, i as u64);
-            let wi = crate::transport::sampling::uniform_hemisphere(s.uniform2(0));
+            let wi = crate::transport::warps::uniform_hemisphere(s.uniform2(0));
             let value =
-                brdf.eval(wo, wi).x * wi.z / crate::transport::sampling::UNIFORM_HEMISPHERE_PDF;
+                brdf.eval(wo, wi).x * wi.z / crate::transport::warps::UNIFORM_HEMISPHERE_PDF;
             sum += value as f64;
             sum_sq += (value * value) as f64;
         }

@@ -43,12 +43,13 @@ use crate::render::settings::{IndirectSampling, LightSampling, MisHeuristic, Ter
 use crate::transport::brdf::{Brdf, BrdfSample};
 use crate::transport::counts::RayCounts;
 use crate::transport::path_log::{PathLog, SegmentKind};
-use crate::transport::sampling::{
-    SampleStream, UNIFORM_HEMISPHERE_PDF, balance_heuristic, cosine_hemisphere,
-    cosine_hemisphere_pdf, dim, power_heuristic, uniform_hemisphere,
-};
+use crate::transport::sampler::{SampleStream, dim};
 use crate::transport::surface::SurfacePoint;
 use crate::transport::tally::Tally;
+use crate::transport::warps::{
+    UNIFORM_HEMISPHERE_PDF, balance_heuristic, cosine_hemisphere, cosine_hemisphere_pdf,
+    power_heuristic, uniform_hemisphere,
+};
 use crate::transport::{TermRadiance, guard_sample};
 
 /// The reflections after which Russian roulette may end a path: from the

@@ -27,7 +27,7 @@ use crate::render::context::RenderContext;
 use crate::render::settings::{Term, TermSet};
 use crate::transport::TermRadiance;
 use crate::transport::brdf::Brdf;
-use crate::transport::sampling::{SampleStream, dim};
+use crate::transport::sampler::{SampleStream, dim};
 use crate::transport::surface::SurfacePoint;
 
 /// The reflections after which Russian roulette may end a path (it then

@@ -44,11 +44,11 @@ use crate::geometry::{Frame, Ray, interpolate_point, offset_ray_origin};
 use crate::render::color::luminance;
 use crate::render::settings::{LightMode, LightSampling, LightSelection, RenderSettings};
 use crate::scene::{NO_ID, PunctualKind, Scene};
-use crate::transport::sampling::{
+use crate::transport::surface::{SurfacePoint, geometric_normal};
+use crate::transport::warps::{
     AliasTable, spherical_triangle, spherical_triangle_area, uniform_cone, uniform_cone_pdf,
     uniform_triangle,
 };
-use crate::transport::surface::{SurfacePoint, geometric_normal};
 
 /// Shadow rays stop this fraction short of the light point (pbrt's ShadowEpsilon):
 /// both ends are already offset off their surfaces, this only absorbs the

@@ -7,8 +7,11 @@
 //! | `brdf.rs` | Lambert, Phong and the mirror: evaluation and sampling |
 //! | `lights.rs` | the light sources and how a point on them is drawn |
 //! | `surface.rs` | what a ray hit, seen as a surface: normals, emission, BRDF |
-//! | `sampling.rs` | random numbers (independent, stratified, Sobol) and warps |
+//! | `sampler.rs` | random numbers: independent, stratified, Sobol |
+//! | `warps.rs` | uniform numbers → directions and points with known densities; the alias table; MIS heuristics |
 //! | `splitting.rs` | the pilot that chooses continuations per first hit |
+//! | `continuations.rs` | the continuations per pixel the samples take |
+//! | `counts.rs`, `tally.rs`, `path_log.rs` | what a sample counts and logs (the fast integrator's bookkeeping) |
 
 pub mod brdf;
 pub mod continuations;
@@ -17,10 +20,11 @@ pub mod fast;
 pub mod lecture;
 pub mod lights;
 pub mod path_log;
-pub mod sampling;
+pub mod sampler;
 pub mod splitting;
 pub mod surface;
 mod tally;
+pub mod warps;
 
 use glam::Vec3;
 
@@ -28,7 +32,7 @@ use crate::geometry::Ray;
 use crate::render::context::RenderContext;
 use crate::render::settings::{Integrator, Term, TermSet};
 use crate::transport::counts::RayCounts;
-use crate::transport::sampling::{SampleStream, dim};
+use crate::transport::sampler::{SampleStream, dim};
 
 /// Radiance of one sample, per term.
 pub type TermRadiance = [Vec3; Term::COUNT];

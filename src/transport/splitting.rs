@@ -66,7 +66,7 @@ use crate::render::settings::Sampler;
 use crate::transport::continuations::{Continuations, SplitMap};
 use crate::transport::counts::RayCounts;
 use crate::transport::fast::ContinuationSplit;
-use crate::transport::sampling::SampleStream;
+use crate::transport::sampler::SampleStream;
 
 /// Pilot samples per grid pixel.
 pub const PILOT_SAMPLES: u32 = 8;

@@ -7,7 +7,7 @@ use glam::Vec3;
 use lumiere::geometry::Ray;
 use lumiere::render::{Budget, RenderStats, render};
 use lumiere::transport::counts::RayCounts;
-use lumiere::transport::sampling::SampleStream;
+use lumiere::transport::sampler::SampleStream;
 use lumiere::{Film, RenderContext, RenderSettings, Scene, Term, TermSet};
 
 /// Adds the plane z = 0, 2·`half_side` wide, facing +z.

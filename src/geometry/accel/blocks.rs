@@ -313,7 +313,7 @@ fn block_candidates<const N: usize>(block: &Block<N>, ray: &RayLanes) -> [u32; N
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::transport::sampling::mix64;
+    use crate::transport::sampler::mix64;
 
     /// A test ray: origin, direction, t_max.
     type TestRay = (Vec3A, Vec3A, f32);
