@@ -15,6 +15,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use lumiere::analysis::noise::DisplayMode;
 use lumiere::analysis::path_view::PathSample;
 use lumiere::render::export::{ImageFormat, save_image};
+use lumiere::render::settings::Choice;
 use lumiere::render::settings::{
     Adaptive, DisplaySettings, IndirectSampling, Integrator, LightSampling, LightSelection,
     MAX_SAMPLES_PER_VERTEX, MisHeuristic, Sampler, Tonemap,
@@ -696,7 +697,7 @@ fn run_bench(args: &BenchArgs) -> Result<(), Failure> {
     };
     // the samplers are what the error curves compare first: all of them unless asked
     let samplers = if args.samplers.is_empty() {
-        Sampler::ALL.to_vec()
+        Sampler::all()
     } else {
         args.samplers.clone()
     };

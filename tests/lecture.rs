@@ -11,6 +11,7 @@ mod common;
 use std::path::Path;
 
 use glam::Vec3;
+use lumiere::render::settings::Choice;
 use lumiere::render::settings::{Integrator, LightSampling, Sampler};
 use lumiere::scene::builtin;
 use lumiere::scene::{Material, PunctualKind, PunctualLight};
@@ -154,8 +155,8 @@ fn punctual_scene() -> Scene {
 
 #[test]
 fn the_integrators_agree_on_the_cornell_box_under_every_light_mode_and_brdf() {
-    for light_mode in LightMode::ALL {
-        for brdf in BrdfOverride::ALL {
+    for light_mode in LightMode::all() {
+        for brdf in BrdfOverride::all() {
             let settings = RenderSettings {
                 light_mode,
                 brdf,
@@ -179,7 +180,7 @@ fn the_integrators_agree_on_every_test_scene() {
     assert!(names.len() >= 8, "{names:?}");
     for name in names {
         let scene = data_scene(&name);
-        for light_mode in LightMode::ALL {
+        for light_mode in LightMode::all() {
             let settings = RenderSettings {
                 light_mode,
                 ..settings(24, 18)
@@ -194,7 +195,7 @@ fn the_integrators_agree_on_every_test_scene() {
 fn the_integrators_agree_under_the_sun_a_point_and_a_spot_light() {
     let scene = punctual_scene();
     for light_mode in [LightMode::Authored, LightMode::Area] {
-        for brdf in BrdfOverride::ALL {
+        for brdf in BrdfOverride::all() {
             let settings = RenderSettings {
                 light_mode,
                 brdf,
@@ -212,7 +213,7 @@ fn the_integrators_agree_under_the_sun_a_point_and_a_spot_light() {
 #[test]
 fn the_fast_integrators_strategies_agree_with_the_lecture() {
     let scene = data_scene("cornell-glossy.gltf");
-    for light_sampling in LightSampling::ALL {
+    for light_sampling in LightSampling::all() {
         let settings = RenderSettings {
             light_sampling,
             sampler: Sampler::Sobol,

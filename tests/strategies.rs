@@ -11,6 +11,7 @@ use common::{add_floor, assert_agrees, estimate, mean_and_error, polygon_irradia
 use glam::{DVec3, Vec2, Vec3};
 use lumiere::geometry::Ray;
 use lumiere::render::context::RenderContext;
+use lumiere::render::settings::Choice;
 use lumiere::render::settings::{IndirectSampling, LightSampling, LightSelection, MisHeuristic};
 use lumiere::scene::builtin::{self, furnace, point_in_sphere};
 use lumiere::scene::{Material, PunctualKind, PunctualLight, Scene};
@@ -118,7 +119,7 @@ fn describe(s: &RenderSettings) -> String {
 /// The strategy sets the tests run: every light strategy with BRDF
 /// continuations, every continuation with MIS, and the MIS variants.
 fn strategy_sets(base: &RenderSettings) -> Vec<RenderSettings> {
-    let mut sets: Vec<RenderSettings> = LightSampling::ALL
+    let mut sets: Vec<RenderSettings> = LightSampling::all()
         .iter()
         .map(|&l| with(base, l, IndirectSampling::Brdf))
         .collect();
@@ -191,7 +192,7 @@ fn uniform_and_power_light_selection_agree_with_two_unequal_lights() {
         (Vec3::new(1.0, 0.5, 0.7), 0.5),
     ];
     let scene = Arc::new(plane_under_lights(&lights));
-    for selection in LightSelection::ALL {
+    for selection in LightSelection::all() {
         for light_sampling in [
             LightSampling::Area,
             LightSampling::SolidAngle,
@@ -235,7 +236,7 @@ fn dirac_lights_are_light_sampled_by_every_strategy() {
     let center = Vec3::new(0.0, 0.0, 1.0);
     let scene = Arc::new(plane_under_lights(&[(center, RADIANCE)]));
     let area = (2.0 * HALF_SIDE as f64).powi(2);
-    for light_sampling in LightSampling::ALL {
+    for light_sampling in LightSampling::all() {
         let settings = RenderSettings {
             light_mode: LightMode::Point,
             ..with(
@@ -272,7 +273,7 @@ fn dirac_lights_are_light_sampled_by_every_strategy() {
         intensity: Vec3::splat(intensity),
     });
     let mixed = Arc::new(mixed);
-    for light_sampling in LightSampling::ALL {
+    for light_sampling in LightSampling::all() {
         let settings = with(
             &small(1, 1, TermSet::only(Term::L1)),
             light_sampling,
@@ -380,7 +381,7 @@ fn light_pdf_queries_match_the_sampled_densities() {
     let scene = Arc::new(scene);
     let mut checked = [0u32; 3];
     for light_sampling in [LightSampling::Area, LightSampling::SolidAngle] {
-        for light_selection in LightSelection::ALL {
+        for light_selection in LightSelection::all() {
             let settings = RenderSettings {
                 light_sampling,
                 light_selection,
@@ -479,7 +480,7 @@ fn all_strategies_agree_on_the_cornell_box() {
         let (reference_mean, reference_error) = mean_and_error(&reference, term);
         let reference_blocks = block_means(&reference, term, 16);
         let mut sets = strategy_sets(&base);
-        sets.remove(LightSampling::ALL.len() - 1); // the default itself
+        sets.remove(LightSampling::all().len() - 1); // the default itself
         sets.push(repeated(&base, 4, 4));
         for settings in sets {
             let film = render_shared(&scene, &settings, 64);

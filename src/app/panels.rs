@@ -9,6 +9,7 @@ use super::probe_view::{self, ImageMapping};
 use super::{LumiereApp, display, interact, reference, split};
 use crate::analysis::noise::{DisplayMode, NoiseSource, Scale};
 use crate::render::progressive::Snapshot;
+use crate::render::settings::Choice;
 use crate::render::settings::{
     Adaptive, BrdfOverride, IndirectSampling, Integrator, LightMode, LightSampling, LightSelection,
     MAX_SAMPLES_PER_VERTEX, MisHeuristic, RenderSettings, Sampler, Term, Tonemap,
@@ -55,10 +56,10 @@ pub fn shortcuts(app: &mut LumiereApp, ctx: &egui::Context) {
     }
     let settings = &mut app.state.settings;
     if pressed(egui::Key::L) {
-        settings.light_mode = next(&LightMode::ALL, settings.light_mode);
+        settings.light_mode = next(&LightMode::all(), settings.light_mode);
     }
     if pressed(egui::Key::B) {
-        settings.brdf = next(&BrdfOverride::ALL, settings.brdf);
+        settings.brdf = next(&BrdfOverride::all(), settings.brdf);
     }
     if pressed(egui::Key::Space) {
         app.paused = !app.paused;
@@ -241,7 +242,7 @@ fn materials_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             egui::ComboBox::from_label("BRDF")
                 .selected_text(brdf_text(settings.brdf))
                 .show_ui(ui, |ui| {
-                    for brdf in BrdfOverride::ALL {
+                    for brdf in BrdfOverride::all() {
                         ui.selectable_value(&mut settings.brdf, brdf, brdf_text(brdf));
                     }
                 });
@@ -265,7 +266,7 @@ fn sampling_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 ui,
                 "integrator",
                 &mut settings.integrator,
-                &Integrator::ALL,
+                &Integrator::all(),
                 integrator_hint,
             );
             // the strategies below are the fast integrator's
@@ -275,7 +276,7 @@ fn sampling_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 ui,
                 "sampler",
                 &mut settings.sampler,
-                &Sampler::ALL,
+                &Sampler::all(),
                 sampler_hint,
             );
             adaptive_ui(ui, &mut settings.adaptive);
@@ -289,13 +290,13 @@ fn strategies_ui(ui: &mut egui::Ui, settings: &mut RenderSettings) {
         ui,
         "direct (L1)",
         &mut settings.light_sampling,
-        &LightSampling::ALL,
+        &LightSampling::all(),
         light_sampling_hint,
     );
     ui.add_enabled_ui(settings.light_sampling == LightSampling::Mis, |ui| {
         ui.horizontal(|ui| {
             ui.label("MIS weights");
-            for heuristic in MisHeuristic::ALL {
+            for heuristic in MisHeuristic::all() {
                 ui.radio_value(&mut settings.mis_heuristic, heuristic, heuristic.label())
                     .on_hover_text(match heuristic {
                         MisHeuristic::Balance => "w = p_light / (p_light + p_brdf)",
@@ -308,7 +309,7 @@ fn strategies_ui(ui: &mut egui::Ui, settings: &mut RenderSettings) {
         ui,
         "indirect (L2, L3+)",
         &mut settings.indirect_sampling,
-        &IndirectSampling::ALL,
+        &IndirectSampling::all(),
         indirect_sampling_hint,
     );
     ui.horizontal(|ui| {
@@ -336,7 +337,7 @@ fn strategies_ui(ui: &mut egui::Ui, settings: &mut RenderSettings) {
     });
     ui.horizontal(|ui| {
         ui.label("pick lights");
-        for selection in LightSelection::ALL {
+        for selection in LightSelection::all() {
             ui.radio_value(&mut settings.light_selection, selection, selection.label())
                 .on_hover_text(match selection {
                     LightSelection::Uniform => "Every light with the same probability",
@@ -522,7 +523,7 @@ fn display_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             egui::ComboBox::from_label("tonemap")
                 .selected_text(display.tonemap.label())
                 .show_ui(ui, |ui| {
-                    for tonemap in Tonemap::ALL {
+                    for tonemap in Tonemap::all() {
                         ui.selectable_value(&mut display.tonemap, tonemap, tonemap.label());
                     }
                 });

@@ -15,6 +15,7 @@ use eframe::egui;
 use super::LumiereApp;
 use crate::analysis::convergence::EstimatorKey;
 use crate::render::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
+use crate::render::settings::Choice;
 use crate::render::settings::{IndirectSampling, LightSampling, MAX_SAMPLES_PER_VERTEX, Sampler};
 
 /// Composed images count their generations from here, away from the workers'.
@@ -319,9 +320,9 @@ pub fn compare_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 return;
             }
             let b = &mut app.compare.estimator;
-            combo(ui, "B light sampling", &mut b.light_sampling, &LightSampling::ALL, LightSampling::label);
-            combo(ui, "B indirect sampling", &mut b.indirect_sampling, &IndirectSampling::ALL, IndirectSampling::label);
-            combo(ui, "B sampler", &mut b.sampler, &Sampler::ALL, Sampler::label);
+            combo(ui, "B light sampling", &mut b.light_sampling, &LightSampling::all(), LightSampling::label);
+            combo(ui, "B indirect sampling", &mut b.indirect_sampling, &IndirectSampling::all(), IndirectSampling::label);
+            combo(ui, "B sampler", &mut b.sampler, &Sampler::all(), Sampler::label);
             ui.horizontal(|ui| {
                 ui.add(
                     egui::DragValue::new(&mut b.light_samples)

@@ -6,6 +6,7 @@
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::str::FromStr;
+use strum::{Display, EnumIter, EnumString, IntoEnumIterator, IntoStaticStr};
 
 /// A lighting term of the course: the light that reached the camera after
 /// exactly k reflections (L3+: three or more).
@@ -168,7 +169,22 @@ impl FromStr for TermSet {
 }
 
 /// Which kind of light sources a render uses (the course's point ↔ extended swap).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    IntoStaticStr,
+    EnumString,
+    Display,
+)]
+#[strum(serialize_all = "kebab-case", ascii_case_insensitive, parse_err_ty = String, parse_err_fn = unknown_choice::<LightMode>)]
 pub enum LightMode {
     /// As the scene defines them.
     #[default]
@@ -179,20 +195,23 @@ pub enum LightMode {
     Area,
 }
 
-impl LightMode {
-    pub const ALL: [LightMode; 3] = [LightMode::Authored, LightMode::Point, LightMode::Area];
-
-    pub fn label(self) -> &'static str {
-        match self {
-            LightMode::Authored => "authored",
-            LightMode::Point => "point",
-            LightMode::Area => "area",
-        }
-    }
-}
-
 /// A global replacement of every material's reflection model.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    IntoStaticStr,
+    EnumString,
+    Display,
+)]
+#[strum(serialize_all = "kebab-case", ascii_case_insensitive, parse_err_ty = String, parse_err_fn = unknown_choice::<BrdfOverride>)]
 pub enum BrdfOverride {
     /// Each material's own model (from its metallic-roughness parameters).
     #[default]
@@ -202,26 +221,23 @@ pub enum BrdfOverride {
     Mirror,
 }
 
-impl BrdfOverride {
-    pub const ALL: [BrdfOverride; 4] = [
-        BrdfOverride::Authored,
-        BrdfOverride::Lambert,
-        BrdfOverride::Phong,
-        BrdfOverride::Mirror,
-    ];
-
-    pub fn label(self) -> &'static str {
-        match self {
-            BrdfOverride::Authored => "authored",
-            BrdfOverride::Lambert => "lambert",
-            BrdfOverride::Phong => "phong",
-            BrdfOverride::Mirror => "mirror",
-        }
-    }
-}
-
 /// How direct lighting from extended lights is estimated at each vertex.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    IntoStaticStr,
+    EnumString,
+    Display,
+)]
+#[strum(serialize_all = "kebab-case", ascii_case_insensitive, parse_err_ty = String, parse_err_fn = unknown_choice::<LightSampling>)]
 pub enum LightSampling {
     /// Uniform points on the light's surface (pdf 1/A, converted to solid angle).
     Area,
@@ -237,28 +253,23 @@ pub enum LightSampling {
     Mis,
 }
 
-impl LightSampling {
-    pub const ALL: [LightSampling; 5] = [
-        LightSampling::Area,
-        LightSampling::SolidAngle,
-        LightSampling::Brdf,
-        LightSampling::Hemisphere,
-        LightSampling::Mis,
-    ];
-
-    pub fn label(self) -> &'static str {
-        match self {
-            LightSampling::Area => "area",
-            LightSampling::SolidAngle => "solid-angle",
-            LightSampling::Brdf => "brdf",
-            LightSampling::Hemisphere => "hemisphere",
-            LightSampling::Mis => "mis",
-        }
-    }
-}
-
 /// The weighting of the two strategies of `LightSampling::Mis`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    IntoStaticStr,
+    EnumString,
+    Display,
+)]
+#[strum(serialize_all = "kebab-case", ascii_case_insensitive, parse_err_ty = String, parse_err_fn = unknown_choice::<MisHeuristic>)]
 pub enum MisHeuristic {
     /// w = p_a / (p_a + p_b).
     Balance,
@@ -267,19 +278,23 @@ pub enum MisHeuristic {
     Power,
 }
 
-impl MisHeuristic {
-    pub const ALL: [MisHeuristic; 2] = [MisHeuristic::Balance, MisHeuristic::Power];
-
-    pub fn label(self) -> &'static str {
-        match self {
-            MisHeuristic::Balance => "balance",
-            MisHeuristic::Power => "power",
-        }
-    }
-}
-
 /// How the direction of the next reflection (L2, L3+) is drawn.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    IntoStaticStr,
+    EnumString,
+    Display,
+)]
+#[strum(serialize_all = "kebab-case", ascii_case_insensitive, parse_err_ty = String, parse_err_fn = unknown_choice::<IndirectSampling>)]
 pub enum IndirectSampling {
     /// pdf 1/2π.
     Uniform,
@@ -290,24 +305,23 @@ pub enum IndirectSampling {
     Brdf,
 }
 
-impl IndirectSampling {
-    pub const ALL: [IndirectSampling; 3] = [
-        IndirectSampling::Uniform,
-        IndirectSampling::Cosine,
-        IndirectSampling::Brdf,
-    ];
-
-    pub fn label(self) -> &'static str {
-        match self {
-            IndirectSampling::Uniform => "uniform",
-            IndirectSampling::Cosine => "cosine",
-            IndirectSampling::Brdf => "brdf",
-        }
-    }
-}
-
 /// How a light is picked for a light sample.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    IntoStaticStr,
+    EnumString,
+    Display,
+)]
+#[strum(serialize_all = "kebab-case", ascii_case_insensitive, parse_err_ty = String, parse_err_fn = unknown_choice::<LightSelection>)]
 pub enum LightSelection {
     /// Every light with the same probability.
     Uniform,
@@ -316,19 +330,23 @@ pub enum LightSelection {
     Power,
 }
 
-impl LightSelection {
-    pub const ALL: [LightSelection; 2] = [LightSelection::Uniform, LightSelection::Power];
-
-    pub fn label(self) -> &'static str {
-        match self {
-            LightSelection::Uniform => "uniform",
-            LightSelection::Power => "power",
-        }
-    }
-}
-
 /// Where the random numbers of a sample come from.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    IntoStaticStr,
+    EnumString,
+    Display,
+)]
+#[strum(serialize_all = "kebab-case", ascii_case_insensitive, parse_err_ty = String, parse_err_fn = unknown_choice::<Sampler>)]
 pub enum Sampler {
     /// Independent uniform numbers (plain Monte Carlo).
     #[default]
@@ -339,20 +357,23 @@ pub enum Sampler {
     Sobol,
 }
 
-impl Sampler {
-    pub const ALL: [Sampler; 3] = [Sampler::Independent, Sampler::Stratified, Sampler::Sobol];
-
-    pub fn label(self) -> &'static str {
-        match self {
-            Sampler::Independent => "independent",
-            Sampler::Stratified => "stratified",
-            Sampler::Sobol => "sobol",
-        }
-    }
-}
-
 /// Which estimator computes the terms.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    IntoStaticStr,
+    EnumString,
+    Display,
+)]
+#[strum(serialize_all = "kebab-case", ascii_case_insensitive, parse_err_ty = String, parse_err_fn = unknown_choice::<Integrator>)]
 pub enum Integrator {
     /// The lecture's estimator, written as the slides write it
     /// (`transport/lecture.rs`): one light sample and one BRDF direction per
@@ -362,17 +383,6 @@ pub enum Integrator {
     /// splitting and skipped work of the other settings.
     #[default]
     Fast,
-}
-
-impl Integrator {
-    pub const ALL: [Integrator; 2] = [Integrator::Lecture, Integrator::Fast];
-
-    pub fn label(self) -> &'static str {
-        match self {
-            Integrator::Lecture => "lecture",
-            Integrator::Fast => "fast",
-        }
-    }
 }
 
 /// Adaptive sampling: a pixel's term stops receiving samples once its
@@ -439,7 +449,22 @@ impl Adaptive {
 }
 
 /// The curve that maps exposed radiance to display values (display and PNG only).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    IntoStaticStr,
+    EnumString,
+    Display,
+)]
+#[strum(serialize_all = "kebab-case", ascii_case_insensitive, parse_err_ty = String, parse_err_fn = unknown_choice::<Tonemap>)]
 pub enum Tonemap {
     /// Clamp to [0, 1].
     #[default]
@@ -451,16 +476,6 @@ pub enum Tonemap {
 }
 
 impl Tonemap {
-    pub const ALL: [Tonemap; 3] = [Tonemap::None, Tonemap::Reinhard, Tonemap::Aces];
-
-    pub fn label(self) -> &'static str {
-        match self {
-            Tonemap::None => "none",
-            Tonemap::Reinhard => "reinhard",
-            Tonemap::Aces => "aces",
-        }
-    }
-
     /// The curve applied to one exposed linear value; the result is in [0, 1].
     pub fn apply(self, c: f32) -> f32 {
         let c = c.max(0.0);
@@ -481,41 +496,32 @@ pub struct DisplaySettings {
     pub tonemap: Tonemap,
 }
 
-macro_rules! label_from_str {
-    ($t:ty) => {
-        impl FromStr for $t {
-            type Err = String;
-            fn from_str(s: &str) -> Result<Self, String> {
-                let names: Vec<&str> = Self::ALL.iter().map(|v| v.label()).collect();
-                Self::ALL
-                    .into_iter()
-                    .find(|v| v.label().eq_ignore_ascii_case(s.trim()))
-                    .ok_or_else(|| {
-                        format!(
-                            "unknown value '{s}' (expected one of: {})",
-                            names.join(", ")
-                        )
-                    })
-            }
-        }
+/// A closed set of options (light mode, BRDF, strategies, sampler, …):
+/// strum derives the list of its values (`iter`), their names (kebab-case,
+/// the same on the command line, in the viewer, the strips and the bench)
+/// and the parser (any case), whose error lists the choices.
+pub trait Choice: Copy + IntoEnumIterator + Into<&'static str> {
+    /// The value's name.
+    fn label(self) -> &'static str {
+        self.into()
+    }
 
-        impl fmt::Display for $t {
-            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-                f.write_str(self.label())
-            }
-        }
-    };
+    /// Every value, in declaration order.
+    fn all() -> Vec<Self> {
+        Self::iter().collect()
+    }
 }
 
-label_from_str!(LightMode);
-label_from_str!(BrdfOverride);
-label_from_str!(Tonemap);
-label_from_str!(LightSampling);
-label_from_str!(MisHeuristic);
-label_from_str!(IndirectSampling);
-label_from_str!(LightSelection);
-label_from_str!(Sampler);
-label_from_str!(Integrator);
+impl<T: Copy + IntoEnumIterator + Into<&'static str>> Choice for T {}
+
+/// The parse error of an unknown name `s` of the closed set `T`.
+fn unknown_choice<T: Choice>(s: &str) -> String {
+    let names: Vec<&str> = T::iter().map(T::label).collect();
+    format!(
+        "unknown value '{s}' (expected one of: {})",
+        names.join(", ")
+    )
+}
 
 /// Everything that decides the radiance a render estimates (not how long it runs).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -658,20 +664,20 @@ mod tests {
 
     #[test]
     fn enums_parse_their_labels() {
-        for m in LightMode::ALL {
+        for m in LightMode::all() {
             assert_eq!(m.label().parse::<LightMode>().unwrap(), m);
         }
-        for b in BrdfOverride::ALL {
+        for b in BrdfOverride::all() {
             assert_eq!(b.label().parse::<BrdfOverride>().unwrap(), b);
         }
         assert!("points".parse::<LightMode>().is_err());
-        for s in LightSampling::ALL {
+        for s in LightSampling::all() {
             assert_eq!(s.label().parse::<LightSampling>().unwrap(), s);
         }
-        for s in IndirectSampling::ALL {
+        for s in IndirectSampling::all() {
             assert_eq!(s.label().parse::<IndirectSampling>().unwrap(), s);
         }
-        for s in Sampler::ALL {
+        for s in Sampler::all() {
             assert_eq!(s.label().parse::<Sampler>().unwrap(), s);
         }
         assert_eq!(

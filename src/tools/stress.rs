@@ -31,6 +31,7 @@ use crate::geometry::accel::Accel;
 use crate::render::color::luminance;
 use crate::render::context::RenderContext;
 use crate::render::film::Film;
+use crate::render::settings::Choice;
 use crate::render::settings::{BrdfOverride, LightMode, RenderSettings, Term, TermSet};
 use crate::render::{PassBuffer, render_pass};
 use crate::scene::builtin::uv_sphere;
@@ -492,7 +493,7 @@ fn lit_pixels(film: &Film, i: usize) -> bool {
 }
 
 const AUTHORED: &[LightMode] = &[LightMode::Authored];
-const ALL_MODES: &[LightMode] = &LightMode::ALL;
+const ALL_MODES: &[LightMode] = &[LightMode::Authored, LightMode::Point, LightMode::Area];
 
 /// The furnace closed form for ρ = 0.5, E = 1 and 16 bounces.
 fn half_furnace(_: LightMode) -> [Option<f64>; Term::COUNT] {

@@ -32,6 +32,7 @@ use image::{ImageBuffer, Rgb};
 use crate::render::context::RenderContext;
 use crate::render::export::{ExportError, to_srgb8};
 use crate::render::film::Film;
+use crate::render::settings::Choice;
 use crate::render::settings::{
     BrdfOverride, DisplaySettings, IndirectSampling, LightMode, LightSampling, LightSelection,
     MAX_SAMPLES_PER_VERTEX, MisHeuristic, RenderSettings, Sampler, TermSet,

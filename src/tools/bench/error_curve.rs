@@ -34,6 +34,7 @@ use std::time::Instant;
 use crate::analysis::capture::{radiance_settings, reference_seed};
 use crate::analysis::metrics::{ReferenceImage, image_error};
 use crate::render::export::{load_exr, save_image};
+use crate::render::settings::Choice;
 use crate::render::settings::{Adaptive, DisplaySettings, LightSampling, RenderSettings, Sampler};
 use crate::render::{Budget, render};
 use crate::scene::{Scene, builtin};

@@ -17,6 +17,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::str::FromStr;
 
+use crate::render::settings::Choice;
 use crate::render::settings::{BrdfOverride, LightMode, RenderSettings, Term};
 use crate::scene::{Projection, Scene, builtin};
 use crate::transport::lights::sphere_light_radius;
