@@ -99,6 +99,7 @@ impl SurfacePoint {
     }
 
     /// Radiance emitted towards `wo` (unit, away from the surface).
+    #[inline]
     pub fn emitted(&self, scene: &Scene, wo: Vec3) -> Vec3 {
         let material = &scene.materials[self.material as usize];
         if !material.is_emissive() || !(material.double_sided || self.ng.dot(wo) > 0.0) {
