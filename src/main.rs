@@ -4,8 +4,10 @@
 //! 2 bad arguments.
 
 use std::io::IsTerminal;
+use std::ops::{Bound, RangeBounds};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::str::FromStr;
 use std::time::Duration;
 
 use anyhow::Context;
@@ -149,13 +151,13 @@ struct SceneOptions {
     #[arg(long, default_value = "authored")]
     lights: LightMode,
     /// Radius in metres of the sphere lights of `--lights area` (default: 2% of the scene's diagonal).
-    #[arg(long, value_parser = parse_positive)]
+    #[arg(long, value_parser = parse_light_radius)]
     light_radius: Option<f32>,
     /// Reflection model of every material: authored, lambert, phong or mirror.
     #[arg(long, default_value = "authored")]
     brdf: BrdfOverride,
     /// Phong exponent for `--brdf phong`.
-    #[arg(long, default_value_t = 32.0, value_parser = parse_exponent)]
+    #[arg(long, default_value_t = 32.0, value_parser = parse_phong_exponent)]
     phong_exponent: f32,
     /// Most reflections per path (caps L3+).
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=100_000))]
@@ -187,7 +189,7 @@ struct SceneOptions {
     #[arg(long, default_value = "independent")]
     sampler: Sampler,
     /// Adaptive sampling: stop sampling a pixel's term once its standard error is below this fraction of the pixel's value (e.g. 0.01; default: off, every pixel gets every sample)
-    #[arg(long, value_parser = parse_threshold)]
+    #[arg(long, value_parser = parse_adaptive_threshold)]
     adaptive: Option<f32>,
     /// Adaptive sampling: samples every pixel gets before its error is judged.
     #[arg(long, default_value_t = Adaptive::default().min_samples, requires = "adaptive", value_parser = clap::value_parser!(u32).range(Adaptive::MIN_SAMPLES as i64..=1_000_000))]
@@ -310,6 +312,7 @@ enum IndirectSamples {
     Auto,
 }
 
+/// `--indirect-samples`: `auto` or a count within 1..=MAX_SAMPLES_PER_VERTEX.
 fn parse_indirect_samples(s: &str) -> Result<IndirectSamples, String> {
     if s.eq_ignore_ascii_case("auto") {
         return Ok(IndirectSamples::Auto);
@@ -322,19 +325,7 @@ fn parse_indirect_samples(s: &str) -> Result<IndirectSamples, String> {
     }
 }
 
-fn parse_seconds(s: &str) -> Result<f64, String> {
-    let v: f64 = s
-        .parse()
-        .map_err(|_| format!("'{s}' is not a number of seconds"))?;
-    if v.is_finite() && v > 0.0 && v <= 1e7 {
-        Ok(v)
-    } else {
-        Err(format!(
-            "{s} seconds is not a positive duration (at most 1e7)"
-        ))
-    }
-}
-
+/// `--probe`: a pixel `X,Y` from the top left.
 fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
     let parsed = s
         .split_once(',')
@@ -342,44 +333,98 @@ fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
     parsed.ok_or_else(|| format!("'{s}' is not a pixel X,Y"))
 }
 
-fn parse_positive(s: &str) -> Result<f32, String> {
-    let v: f32 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(format!("{s} must be a positive number"))
-    }
-}
-
-fn parse_exponent(s: &str) -> Result<f32, String> {
-    let v: f32 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
-    if v.is_finite() && (0.0..=1e6).contains(&v) {
-        Ok(v)
-    } else {
-        Err(format!("Phong exponent {s} must be within 0..=1e6"))
-    }
-}
-
-fn parse_threshold(s: &str) -> Result<f32, String> {
-    let v: f32 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
-    if v.is_finite() && v > 0.0 && v <= 1.0 {
-        Ok(v)
-    } else {
-        Err(format!(
-            "adaptive threshold {s} must be a fraction within (0, 1] (0.01: stop at 1% standard error)"
-        ))
-    }
-}
-
-fn parse_exposure(s: &str) -> Result<f32, String> {
-    let v: f32 = s
+/// Parses a finite number within `range`; `what` names the value (and its
+/// unit) in the messages, e.g. "exposure in stops must be within -64..=64, not 99".
+/// A number too large for `T` parses as infinite and is refused as not finite.
+fn parse_in_range<T>(s: &str, range: impl RangeBounds<f64>, what: &str) -> Result<T, String>
+where
+    T: FromStr + Into<f64> + Copy,
+{
+    let value: T = s
         .parse()
-        .map_err(|_| format!("'{s}' is not a number of stops"))?;
-    if v.is_finite() && (-64.0..=64.0).contains(&v) {
-        Ok(v)
+        .map_err(|_| format!("{what} must be a number, not '{s}'"))?;
+    let wide: f64 = value.into();
+    if !wide.is_finite() {
+        Err(format!(
+            "{what} must be a finite number {}, not {s}",
+            describe(&range)
+        ))
+    } else if !range.contains(&wide) {
+        Err(format!("{what} must be {}, not {s}", describe(&range)))
     } else {
-        Err(format!("exposure {s} must be within -64..=64 stops"))
+        Ok(value)
     }
+}
+
+/// A range in words: "within 0..=1e6", "greater than 0", "greater than 0 and at most 1".
+fn describe(range: &impl RangeBounds<f64>) -> String {
+    if let (Bound::Included(&low), Bound::Included(&high)) =
+        (range.start_bound(), range.end_bound())
+    {
+        return format!("within {}..={}", number(low), number(high));
+    }
+    let low = match range.start_bound() {
+        Bound::Included(&v) => Some(format!("at least {}", number(v))),
+        Bound::Excluded(&v) => Some(format!("greater than {}", number(v))),
+        Bound::Unbounded => None,
+    };
+    let high = match range.end_bound() {
+        Bound::Included(&v) => Some(format!("at most {}", number(v))),
+        Bound::Excluded(&v) => Some(format!("less than {}", number(v))),
+        Bound::Unbounded => None,
+    };
+    match (low, high) {
+        (Some(low), Some(high)) => format!("{low} and {high}"),
+        (Some(bound), None) | (None, Some(bound)) => bound,
+        (None, None) => "of any size".to_string(),
+    }
+}
+
+/// A bound as written in the help: 64, 0.5, 1e6.
+fn number(v: f64) -> String {
+    if v.abs() >= 1e5 {
+        format!("{v:e}")
+    } else {
+        v.to_string()
+    }
+}
+
+/// `--light-radius`: metres, positive.
+fn parse_light_radius(s: &str) -> Result<f32, String> {
+    parse_in_range(
+        s,
+        (Bound::Excluded(0.0), Bound::Unbounded),
+        "light radius in metres",
+    )
+}
+
+/// `--phong-exponent`: within 0..=1e6.
+fn parse_phong_exponent(s: &str) -> Result<f32, String> {
+    parse_in_range(s, 0.0..=1e6, "Phong exponent")
+}
+
+/// `--adaptive`: a fraction of the pixel's value, within (0, 1].
+fn parse_adaptive_threshold(s: &str) -> Result<f32, String> {
+    parse_in_range(
+        s,
+        (Bound::Excluded(0.0), Bound::Included(1.0)),
+        "adaptive threshold",
+    )
+    .map_err(|e| format!("{e} (a fraction: 0.01 stops at 1% standard error)"))
+}
+
+/// `--exposure`: stops, within -64..=64.
+fn parse_exposure(s: &str) -> Result<f32, String> {
+    parse_in_range(s, -64.0..=64.0, "exposure in stops")
+}
+
+/// `--time`: seconds, positive and at most 1e7.
+fn parse_seconds(s: &str) -> Result<f64, String> {
+    parse_in_range(
+        s,
+        (Bound::Excluded(0.0), Bound::Included(1e7)),
+        "render time in seconds",
+    )
 }
 
 impl SceneOptions {
