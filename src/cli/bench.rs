@@ -121,6 +121,37 @@ fn bench_settings(args: &BenchArgs) -> RenderSettings {
     settings
 }
 
+/// Every check of the bench's arguments: the settings, the sections, the
+/// reference's sample count against the curves', the films of the resolution rows.
+fn check(args: &BenchArgs, settings: &RenderSettings) -> Result<(), Failure> {
+    check_settings(settings, settings.terms)?;
+    if args.only.is_empty() {
+        return Err(Failure::usage_message(
+            "--only names no section (expected error, throughput or scaling)",
+        ));
+    }
+    if args.reference.is_none() {
+        let curve_ends = [
+            ("--max-spp", Some(args.max_spp)),
+            ("--extend-spp", args.extend_spp),
+        ];
+        for (option, spp) in curve_ends {
+            if let Some(spp) = spp
+                && args.reference_spp < spp
+            {
+                return Err(Failure::usage_message(format_args!(
+                    "--reference-spp {} is below {option} {spp}: the reference must converge further than the curves",
+                    args.reference_spp
+                )));
+            }
+        }
+    }
+    for &size in &args.resolutions {
+        Film::check_memory(size, size, settings.terms).map_err(Failure::usage)?;
+    }
+    Ok(())
+}
+
 /// The estimators of the error curves: each strategy with each sampler
 /// (default: --light-sampling with all samplers), with one continuation and
 /// with the pilot's choice unless --indirect-samples says which.
@@ -193,31 +224,7 @@ fn config(args: &BenchArgs, settings: RenderSettings) -> BenchConfig {
 /// Runs the sections into the output folder and prints their summary.
 pub fn run(args: &BenchArgs) -> Result<(), Failure> {
     let settings = bench_settings(args);
-    check_settings(&settings, settings.terms)?;
-    if args.only.is_empty() {
-        return Err(Failure::usage_message(
-            "--only names no section (expected error, throughput or scaling)",
-        ));
-    }
-    if args.reference.is_none() {
-        let curve_ends = [
-            ("--max-spp", Some(args.max_spp)),
-            ("--extend-spp", args.extend_spp),
-        ];
-        for (option, spp) in curve_ends {
-            if let Some(spp) = spp
-                && args.reference_spp < spp
-            {
-                return Err(Failure::usage_message(format_args!(
-                    "--reference-spp {} is below {option} {spp}: the reference must converge further than the curves",
-                    args.reference_spp
-                )));
-            }
-        }
-    }
-    for &size in &args.resolutions {
-        Film::check_memory(size, size, settings.terms).map_err(Failure::usage)?;
-    }
+    check(args, &settings)?;
     let config = config(args, settings);
     let pool = worker_pool(args.threads)?;
     let spinner = Spinner::new();

@@ -1,6 +1,6 @@
 //! `lumiere render`: one scene to an EXR or PNG image.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use clap::Args;
@@ -77,17 +77,25 @@ impl RenderJob {
     }
 }
 
-/// Renders the scene, saves the image and prints the summary.
-pub fn run(args: &RenderArgs) -> Result<(), Failure> {
-    if ImageFormat::from_path(&args.output).is_none() {
+/// Every check of a render's arguments: the output's format (first, as a
+/// bad extension is reported even when the sidecar cannot be read), then
+/// the job's settings and film.
+fn check(output: &Path, job: Result<RenderJob, Failure>) -> Result<RenderJob, Failure> {
+    if ImageFormat::from_path(output).is_none() {
         return Err(Failure::usage_message(format_args!(
             "{}: unknown image format (the output must end in .exr or .png)",
-            args.output.display()
+            output.display()
         )));
     }
-    let job = RenderJob::from_args(args)?;
+    let job = job?;
+    check_settings(&job.settings, job.settings.terms)?;
+    Ok(job)
+}
+
+/// Renders the scene, saves the image and prints the summary.
+pub fn run(args: &RenderArgs) -> Result<(), Failure> {
+    let job = check(&args.output, RenderJob::from_args(args))?;
     let settings = job.settings.clone();
-    check_settings(&settings, settings.terms)?;
     let scene = load_scene(&job.scene)?;
     let pool = worker_pool(args.threads)?;
     let (film, stats, continuations) = pool.install(|| {

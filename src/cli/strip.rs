@@ -51,6 +51,31 @@ fn tile_settings(args: &StripArgs) -> RenderSettings {
     base
 }
 
+/// Every check of a strip's arguments: the output's format, each row's
+/// settings and film, the whole image's size. Returns the layout.
+fn check(
+    args: &StripArgs,
+    base: &RenderSettings,
+    rows: &[StripRow],
+) -> Result<StripLayout, Failure> {
+    if ImageFormat::from_path(&args.output) != Some(ImageFormat::Png) {
+        return Err(Failure::usage_message(format_args!(
+            "{}: a strip is written as PNG only (its labels are display pixels); the output must end in .png",
+            args.output.display()
+        )));
+    }
+    for row in rows {
+        row.settings.validate().map_err(Failure::usage_message)?;
+    }
+    for row in rows {
+        Film::check_memory(base.width, base.height, row.settings.terms).map_err(Failure::usage)?;
+    }
+    let row_labels = rows.iter().filter_map(|r| r.label.clone()).collect();
+    let layout = StripLayout::new(base.width, base.height, args.spp.labels(), row_labels);
+    layout.check_size().map_err(Failure::usage_message)?;
+    Ok(layout)
+}
+
 /// Renders the strip row by row, printing each row's summary, and saves it.
 pub fn run(args: &StripArgs) -> Result<(), Failure> {
     let base = tile_settings(args);
@@ -61,21 +86,7 @@ pub fn run(args: &StripArgs) -> Result<(), Failure> {
             settings: base.clone(),
         }],
     };
-    if ImageFormat::from_path(&args.output) != Some(ImageFormat::Png) {
-        return Err(Failure::usage_message(format_args!(
-            "{}: a strip is written as PNG only (its labels are display pixels); the output must end in .png",
-            args.output.display()
-        )));
-    }
-    for row in &rows {
-        row.settings.validate().map_err(Failure::usage_message)?;
-    }
-    for row in &rows {
-        Film::check_memory(base.width, base.height, row.settings.terms).map_err(Failure::usage)?;
-    }
-    let row_labels = rows.iter().filter_map(|r| r.label.clone()).collect();
-    let layout = StripLayout::new(base.width, base.height, args.spp.labels(), row_labels);
-    layout.check_size().map_err(Failure::usage_message)?;
+    let layout = check(args, &base, &rows)?;
     let scene = load_scene(&args.scene)?;
     let pool = worker_pool(args.threads)?;
     let mut image = StripImage::new(layout);

@@ -62,13 +62,19 @@ impl ViewArgs {
     }
 }
 
+/// Every check of the viewer's arguments: the settings, and a film holding
+/// every term (the viewer can switch each on).
+#[cfg(feature = "gui")]
+fn check(settings: &lumiere::RenderSettings) -> Result<(), Failure> {
+    super::check_settings(settings, lumiere::TermSet::ALL)
+}
+
 /// Opens the viewer; `restore` brings back the last session's window and
 /// settings (`lumiere` without a command).
 #[cfg(feature = "gui")]
 pub fn run(args: ViewArgs, restore: bool) -> Result<(), Failure> {
     let settings = args.options.settings();
-    // the viewer can switch every term on
-    super::check_settings(&settings, lumiere::TermSet::ALL)?;
+    check(&settings)?;
     let comparing = args.compare_light_sampling.is_some()
         || args.compare_indirect_sampling.is_some()
         || args.compare_sampler.is_some();
