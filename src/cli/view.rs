@@ -1,0 +1,116 @@
+//! `lumiere view`: the interactive viewer (feature `gui`).
+
+use std::path::PathBuf;
+
+use clap::Parser;
+
+use lumiere::analysis::noise::DisplayMode;
+use lumiere::analysis::path_view::PathSample;
+use lumiere::render::settings::{IndirectSampling, LightSampling, Sampler};
+
+use super::Failure;
+use super::options::SceneOptions;
+use super::parsers::parse_pixel;
+
+/// The arguments of `lumiere view` (and of `lumiere` without a command).
+#[derive(Parser)]
+pub struct ViewArgs {
+    /// A .gltf/.glb file, or `cornell` (the built-in Cornell box, the default).
+    #[arg(default_value = "cornell")]
+    scene: String,
+    /// Render to this many samples per pixel, then exit (saving --screenshot first).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000_000))]
+    exit_after_spp: Option<u32>,
+    /// With --exit-after-spp: a PNG of the whole window, taken by the viewer.
+    #[arg(long, requires = "exit_after_spp")]
+    screenshot: Option<PathBuf>,
+    /// Measure the time from a toggle to the preview on screen and the UI frame time, print them, exit.
+    #[arg(long, conflicts_with_all = ["exit_after_spp", "screenshot"])]
+    bench: bool,
+    /// A linear EXR of the starting view (same size): RMSE and relMSE are measured against it.
+    #[arg(long)]
+    reference: Option<PathBuf>,
+    /// Open the convergence plot (error against spp and seconds).
+    #[arg(long)]
+    convergence_plot: bool,
+    /// Compare, for equal time, with a second estimator using this light sampling.
+    #[arg(long)]
+    compare_light_sampling: Option<LightSampling>,
+    /// The second estimator's indirect sampling (default: the first's).
+    #[arg(long)]
+    compare_indirect_sampling: Option<IndirectSampling>,
+    /// The second estimator's sampler (default: the first's).
+    #[arg(long)]
+    compare_sampler: Option<Sampler>,
+    /// What the image shows: image, standard-error, relative-error or sample-count.
+    #[arg(long, default_value = "image")]
+    display_mode: DisplayMode,
+    /// Probe the pixel at X,Y (from the top left) from the start.
+    #[arg(long, value_parser = parse_pixel)]
+    probe: Option<(u32, u32)>,
+    /// Which of the probed pixel's samples the path view draws: a number from 1, or `brightest`.
+    #[arg(long, default_value = "1", requires = "probe")]
+    probe_sample: PathSample,
+    #[command(flatten)]
+    options: SceneOptions,
+}
+
+impl ViewArgs {
+    /// The arguments of `lumiere` without a command: every default.
+    pub fn defaults() -> Self {
+        Self::parse_from(["view"])
+    }
+}
+
+/// Every check of the viewer's arguments: the settings, and a film holding
+/// every term (the viewer can switch each on).
+#[cfg(feature = "gui")]
+fn check(settings: &lumiere::RenderSettings) -> Result<(), Failure> {
+    super::check_settings(settings, lumiere::TermSet::ALL)
+}
+
+/// Opens the viewer; `restore` brings back the last session's window and
+/// settings (`lumiere` without a command).
+#[cfg(feature = "gui")]
+pub fn run(args: ViewArgs, restore: bool) -> Result<(), Failure> {
+    let settings = args.options.settings();
+    check(&settings)?;
+    let comparing = args.compare_light_sampling.is_some()
+        || args.compare_indirect_sampling.is_some()
+        || args.compare_sampler.is_some();
+    let compare = comparing.then(|| {
+        let mut estimator = lumiere::analysis::convergence::EstimatorKey::of(&settings);
+        estimator.light_sampling = args
+            .compare_light_sampling
+            .unwrap_or(estimator.light_sampling);
+        estimator.indirect_sampling = args
+            .compare_indirect_sampling
+            .unwrap_or(estimator.indirect_sampling);
+        estimator.sampler = args.compare_sampler.unwrap_or(estimator.sampler);
+        estimator
+    });
+    let options = lumiere::app::ViewOptions {
+        scene: args.scene,
+        settings,
+        display: args.options.display(),
+        exit_after_spp: args.exit_after_spp,
+        screenshot: args.screenshot,
+        restore,
+        bench: args.bench,
+        reference: args.reference,
+        compare,
+        convergence_plot: args.convergence_plot,
+        display_mode: args.display_mode,
+        probe: args.probe,
+        probe_sample: args.probe_sample,
+    };
+    lumiere::app::run(options).map_err(|e| Failure::runtime(anyhow::anyhow!(e)))
+}
+
+/// Refuses: this build has no viewer.
+#[cfg(not(feature = "gui"))]
+pub fn run(_args: ViewArgs, _restore: bool) -> Result<(), Failure> {
+    Err(Failure::usage_message(
+        "this lumiere was built without the viewer (the `gui` feature); use `lumiere render`",
+    ))
+}
