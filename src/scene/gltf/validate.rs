@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 
 use gltf::Document;
 use gltf::mesh::Semantic;
+use percent_encoding::percent_decode_str;
 
 use super::Loaded;
 
@@ -163,46 +164,16 @@ fn check_uri(owner: &str, uri: &str, base_dir: Option<&Path>) -> Loaded<()> {
     } else if uri.contains(':') {
         return Ok(());
     } else {
-        let decoded = percent_decode(uri).ok_or_else(|| {
+        let decoded = percent_decode_str(uri).decode_utf8().map_err(|_| {
             format!("{owner}: URI \"{uri}\" does not percent-decode to valid UTF-8")
         })?;
-        base_dir.join(decoded)
+        base_dir.join(&*decoded)
     };
     match std::fs::metadata(&path) {
         Ok(metadata) if !metadata.is_file() => {
             Err(format!("{owner}: \"{uri}\" is not a regular file"))
         }
         _ => Ok(()),
-    }
-}
-
-fn percent_decode(uri: &str) -> Option<String> {
-    let bytes = uri.as_bytes();
-    let mut decoded = Vec::with_capacity(bytes.len());
-    let mut i = 0;
-    while i < bytes.len() {
-        let escape = bytes
-            .get(i + 1..i + 3)
-            .filter(|hex| bytes[i] == b'%' && hex.iter().all(u8::is_ascii_hexdigit));
-        match escape {
-            Some(hex) => {
-                decoded.push(hex_value(hex[0]) << 4 | hex_value(hex[1]));
-                i += 3;
-            }
-            None => {
-                decoded.push(bytes[i]);
-                i += 1;
-            }
-        }
-    }
-    String::from_utf8(decoded).ok()
-}
-
-fn hex_value(digit: u8) -> u8 {
-    match digit {
-        b'0'..=b'9' => digit - b'0',
-        b'a'..=b'f' => digit - b'a' + 10,
-        _ => digit - b'A' + 10,
     }
 }
 
@@ -236,4 +207,31 @@ fn is_tolerated(path: &str, error: gltf::json::validation::Error) -> bool {
     // already checked against ACCEPTED_REQUIRED_EXTENSIONS
     let accepted_extension = error == Error::Unsupported && path.starts_with("extensionsRequired");
     zero_accessor || accepted_extension
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn relative_uris_are_percent_decoded_before_they_are_resolved() {
+        let directory =
+            std::env::temp_dir().join(format!("lumiere-check-uri-{}", std::process::id()));
+        for folder in ["a folder", "é"] {
+            std::fs::create_dir_all(directory.join(folder)).unwrap();
+        }
+        // the escapes name the folders, which are not regular files
+        for uri in ["a%20folder", "%C3%A9"] {
+            let error = check_uri("buffer 0", uri, Some(&directory)).unwrap_err();
+            assert!(error.contains("is not a regular file"), "{error}");
+        }
+        // escapes that are not UTF-8 are refused; a '%' without two hex digits stays as is
+        let error = check_uri("buffer 0", "%FF.bin", Some(&directory)).unwrap_err();
+        assert!(
+            error.contains("does not percent-decode to valid UTF-8"),
+            "{error}"
+        );
+        assert!(check_uri("buffer 0", "100%.bin", Some(&directory)).is_ok());
+        std::fs::remove_dir_all(&directory).unwrap();
+    }
 }
