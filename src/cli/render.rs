@@ -6,7 +6,7 @@ use std::time::Duration;
 use clap::Args;
 
 use lumiere::render::export::{ImageFormat, save_image};
-use lumiere::render::settings::DisplaySettings;
+use lumiere::render::settings::{DisplaySettings, Integrator};
 use lumiere::render::sidecar::Sidecar;
 use lumiere::render::{Budget, render};
 use lumiere::scene::Camera;
@@ -119,6 +119,9 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     )
     .map_err(Failure::runtime)?;
     println!("{}", summary(&stats));
+    if settings.integrator == Integrator::Lecture {
+        println!("the lecture integrator counts its samples only: the rays above are camera rays");
+    }
     if settings.adaptive.is_some() {
         let traced = stats.rays.camera as f64 / film.pixel_count() as f64;
         println!(

@@ -21,8 +21,8 @@
 
 use glam::{Vec2, Vec3};
 
-use crate::geometry::Ray;
 use crate::geometry::accel::Hit;
+use crate::geometry::{Frame, Ray};
 use crate::render::context::RenderContext;
 use crate::render::settings::{Term, TermSet};
 use crate::transport::TermRadiance;
@@ -30,8 +30,8 @@ use crate::transport::brdf::Brdf;
 use crate::transport::sampler::{SampleStream, dim};
 use crate::transport::surface::SurfacePoint;
 
-/// The reflections after which Russian roulette may end a path (it then
-/// only touches L3+).
+/// The reflections after which Russian roulette may end a path: it decides
+/// from the fourth reflection on, inside L3+.
 const ROULETTE_FROM_REFLECTION: u32 = 3;
 
 /// The radiance arriving along `camera_ray` (unit direction), per term; the
@@ -111,7 +111,8 @@ fn beyond_two_reflections(
             break;
         };
         beta *= weight;
-        // Russian roulette: go on with probability q, divide by q (unbiased)
+        // Russian roulette: go on with probability P and divide by P, which
+        // keeps the mean and ends paths that carry little
         if k >= ROULETTE_FROM_REFLECTION {
             let survival = beta.max_element().min(0.95);
             let u = stream.uniform(dim::vertex_base(k) + dim::RUSSIAN_ROULETTE);
@@ -132,7 +133,7 @@ struct Surface {
     point: SurfacePoint,
     brdf: Brdf,
     /// Shading frame, its z on the side the light leaves towards.
-    frame: crate::geometry::Frame,
+    frame: Frame,
     /// Geometric normal on that side.
     ng: Vec3,
     /// Direction towards the viewer (or the previous point), local frame.
