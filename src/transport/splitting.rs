@@ -18,8 +18,7 @@
 //! M* = √( V_w C₁ / (V_b C₂) )
 //! ```
 //!
-//! the classic optimum of splitting (Arnold's "diffuse samples" set by
-//! hand). A pilot measures the four figures: [`PILOT_SAMPLES`] independent
+//! the classic optimum of splitting. A pilot measures the four figures: [`PILOT_SAMPLES`] independent
 //! samples with M = 2 at each pixel of a grid over the image. For one
 //! sample, (Y₁ − Y₂)² / 2 is an unbiased estimate of V_w; over a pixel's
 //! samples, the sample variance of X one of V_b + V_w / 2. Each pixel's
@@ -28,15 +27,11 @@
 //! averaged. Costs are counted in rays. The choice is thus a function of the
 //! scene, the settings and the seed: the same whatever the thread count.
 //!
-//! M* is rounded to a power of two, so that the Sobol and stratified
-//! samplers give each sample's continuations an aligned block of points,
-//! and kept within 1..=[`MAX_AUTO_INDIRECT_SAMPLES`]. The time is flat
-//! near the optimum, and the model is that of independent numbers: with
-//! them M* is rounded to the nearest power of two. The stratified and
-//! Sobol samplers spread a sample's continuations over consecutive points,
-//! which cancels their noise faster than 1/M: there it is rounded up.
-//! Scenes whose continuations bring nothing (terms L0, L1 only, mirrors
-//! everywhere) keep M = 1 without a pilot.
+//! M* is rounded to a power of two (so that Sobol and stratified points
+//! give each sample's continuations an aligned block; up for those two
+//! samplers, whose continuations cancel faster than 1/M, to the nearest for
+//! independent numbers), within 1..=[`MAX_AUTO_INDIRECT_SAMPLES`]. Scenes
+//! whose continuations bring nothing keep M = 1 without a pilot.
 //!
 //! ## Region by region
 //!
