@@ -1,6 +1,6 @@
 //! The numerical stress suite at the test suite's size: no NaN, infinite or
 //! negative sample reaches the film, no ray leaks out of a closed scene, and
-//! every known energy comes back within the noise (`src/stress.rs`).
+//! every known energy comes back within the noise (`src/tools/stress/`).
 
 use lumiere::tools::stress::{Case, Effort, table};
 

@@ -1,0 +1,321 @@
+//! The render cases: for each, the scenes it renders, their settings and
+//! light modes, whether they are closed, the exact image mean of each term
+//! (mostly the furnace's L_k = ρᵏ E) and the systematic tolerance allowed
+//! beyond the noise; then the renders, and the checks filed in a
+//! [`CaseReport`].
+
+use glam::Vec3;
+
+use super::scenes::{
+    add_zero_area_triangles, corridor_scene, furnace_scene, glowing_wall, grazing_scene,
+    light_on_surface_scene, point_in_sphere_scene,
+};
+use super::{Case, CaseReport, Effort, term_mean};
+use crate::render::context::RenderContext;
+use crate::render::film::Film;
+use crate::render::settings::Choice;
+use crate::render::settings::{BrdfOverride, LightMode, RenderSettings, Term, TermSet};
+use crate::render::{PassBuffer, render_pass};
+use crate::scene::{Material, Scene};
+use crate::transport::counts::RayCounts;
+
+/// Film size and passes for a render case.
+fn film_size(effort: Effort) -> (u32, u32, u32) {
+    match effort {
+        Effort::Quick => (16, 12, 8),
+        Effort::Full => (64, 48, 64),
+    }
+}
+
+/// Renders `scene` with `settings` for `passes`.
+fn render_scene(scene: &Scene, settings: &RenderSettings, passes: u32) -> (Film, RayCounts) {
+    let context = RenderContext::new(scene.clone(), settings.clone());
+    let mut film = Film::new(settings.width, settings.height);
+    let mut buffer = PassBuffer::default();
+    let mut counts = RayCounts::default();
+    for pass in 0..passes {
+        counts.add(&render_pass(&context, &mut film, pass, &mut buffer));
+    }
+    (film, counts)
+}
+
+/// One scene and what to check in it.
+struct Setup {
+    scene: Scene,
+    settings: RenderSettings,
+    light_modes: &'static [LightMode],
+    closed: bool,
+    /// Exact image mean of each term over the pixels kept, per light mode.
+    exact: fn(LightMode) -> [Option<f64>; Term::COUNT],
+    /// Which pixels the means are over (all, or those seeing a surface).
+    keep: fn(&Film, usize) -> bool,
+    /// Relative bias allowed beyond the noise, where the closed form is
+    /// known to be approximate (zero elsewhere).
+    tolerance: f64,
+}
+
+fn every_pixel(_: &Film, _: usize) -> bool {
+    true
+}
+
+/// Pixels wholly on the lit plane: L1 above zero and the same in every sample
+/// (a pixel across the horizon mixes plane and sky).
+fn lit_pixels(film: &Film, i: usize) -> bool {
+    film.term(Term::L1)
+        .is_some_and(|b| b.luminance[i].mean > 0.0 && b.standard_error(i) == 0.0)
+}
+
+const AUTHORED: &[LightMode] = &[LightMode::Authored];
+const ALL_MODES: &[LightMode] = &[LightMode::Authored, LightMode::Point, LightMode::Area];
+
+/// L_k of a furnace of reflectance ρ and emission E, and L3+ up to `max_bounces`.
+pub(super) fn furnace_terms(rho: f64, emission: f64, max_bounces: u32) -> [f64; Term::COUNT] {
+    let l3: f64 = (3..=max_bounces).map(|k| rho.powi(k as i32)).sum();
+    [
+        emission,
+        rho * emission,
+        rho * rho * emission,
+        l3 * emission,
+    ]
+}
+
+/// The furnace closed form for ρ = 0.5, E = 1 and 16 bounces.
+fn half_furnace(_: LightMode) -> [Option<f64>; Term::COUNT] {
+    furnace_terms(0.5, 1.0, 16).map(Some)
+}
+
+fn setup(case: Case, effort: Effort) -> Setup {
+    let (width, height, _) = film_size(effort);
+    let settings = RenderSettings {
+        width,
+        height,
+        terms: TermSet::ALL,
+        max_bounces: 16,
+        ..RenderSettings::default()
+    };
+    let furnace = |radius: f32, centre: Vec3| Setup {
+        scene: furnace_scene(radius, centre, glowing_wall(0.5, 1.0), 48, 24),
+        settings: settings.clone(),
+        light_modes: AUTHORED,
+        closed: true,
+        exact: half_furnace,
+        keep: every_pixel,
+        tolerance: 0.0,
+    };
+    match case {
+        Case::TinyScale => furnace(1e-4, Vec3::ZERO),
+        Case::HugeScale => furnace(1e5, Vec3::ZERO),
+        // f32 positions 1e5 m out are 7.8 mm apart and rays leave the surface
+        // about 2 cm out: the MIS weights of a light point, taken from the
+        // hit point, and of the direction traced from the offset origin no
+        // longer sum to one, which loses about 0.5 % (area sampling alone
+        // and BRDF sampling alone keep the mean)
+        Case::FarFromOrigin => Setup {
+            tolerance: 0.015,
+            ..furnace(10.0, Vec3::new(1e5, -1e5, 1e5))
+        },
+        Case::Slivers => {
+            let mut scene = furnace_scene(1.0, Vec3::ZERO, glowing_wall(0.5, 1.0), 4096, 3);
+            add_zero_area_triangles(&mut scene);
+            Setup {
+                scene,
+                ..furnace(1.0, Vec3::ZERO)
+            }
+        }
+        Case::CoincidentFaces => point_in_sphere(&settings, 1.0, Vec3::ZERO, 3),
+        Case::SharpPhong => Setup {
+            scene: furnace_scene(
+                1.0,
+                Vec3::ZERO,
+                Material {
+                    emission: Vec3::ONE,
+                    ..Material::lambert("phong", Vec3::ZERO)
+                },
+                48,
+                24,
+            ),
+            settings: RenderSettings {
+                brdf: BrdfOverride::Phong,
+                phong_exponent: 1e6,
+                phong_specular: 0.5,
+                ..settings.clone()
+            },
+            // a lobe this sharp reflects ks cos θ, and the facets of the
+            // tessellated sphere tilt up to 3.75° from the rays through its
+            // centre: 0.2 % per reflection, compounding in L3+
+            tolerance: 0.05,
+            ..furnace(1.0, Vec3::ZERO)
+        },
+        Case::WhiteFurnace => Setup {
+            scene: furnace_scene(1.0, Vec3::ZERO, glowing_wall(1.0, 1.0), 48, 24),
+            settings: RenderSettings {
+                max_bounces: 8,
+                ..settings.clone()
+            },
+            light_modes: AUTHORED,
+            closed: true,
+            exact: |_| furnace_terms(1.0, 1.0, 8).map(Some),
+            keep: every_pixel,
+            tolerance: 0.0,
+        },
+        Case::MirrorCorridor => Setup {
+            scene: corridor_scene(
+                Vec3::new(1.0, 1.0, 40.0),
+                Material {
+                    emission: Vec3::ONE,
+                    double_sided: true,
+                    ..Material::mirror("mirror", Vec3::splat(0.9))
+                },
+            ),
+            settings: RenderSettings {
+                max_bounces: 64,
+                ..settings.clone()
+            },
+            light_modes: AUTHORED,
+            closed: true,
+            exact: |_| furnace_terms(0.9, 1.0, 64).map(Some),
+            keep: every_pixel,
+            tolerance: 0.0,
+        },
+        Case::Grazing => grazing(settings),
+        Case::LightOnSurface => light_on_surface(settings),
+        Case::SphereLeaks | Case::MillionSamples => unreachable!("not a render case"),
+    }
+}
+
+/// A point light of intensity I = π R² in a sphere of radius R and albedo
+/// ½, its surface there `copies` times: whichever copy a ray meets,
+/// L1 = ρ I / (π R²) = ½ and L_k = ρ^(k−1) L1, and no copy may shadow
+/// another. As a sphere light (`area` mode) the light gets a radius of
+/// 10⁻³ R, which absorbs a negligible 10⁻⁶ of L2.
+fn point_in_sphere(settings: &RenderSettings, radius: f32, centre: Vec3, copies: usize) -> Setup {
+    Setup {
+        scene: point_in_sphere_scene(radius, centre, copies),
+        settings: RenderSettings {
+            light_radius: Some(1e-3 * radius),
+            ..settings.clone()
+        },
+        light_modes: ALL_MODES,
+        closed: true,
+        exact: |_| {
+            let [_, l1, l2, l3] = furnace_terms(0.5, 1.0, 16);
+            [Some(0.0), Some(l1), Some(l2), Some(l3)]
+        },
+        keep: every_pixel,
+        // the facets lie up to 1 − cos(0.7°) inside the sphere: irradiance
+        // I cos θ / d² is up to 1.5e-4 above I / R² there
+        tolerance: 3e-4,
+    }
+}
+
+/// The plane lit 89.9° from its normal: on the pixels wholly on it,
+/// L1 = ρ E⊥ cos θ / π, and nothing reflects twice.
+fn grazing(settings: RenderSettings) -> Setup {
+    Setup {
+        scene: grazing_scene(),
+        settings,
+        light_modes: ALL_MODES,
+        closed: false,
+        exact: |_| {
+            // the cosine the scene's f32 direction holds
+            let cos = 89.9f32.to_radians().cos() as f64;
+            // one plane: nothing reflects twice
+            [
+                Some(0.0),
+                Some(0.5 * 1000.0 * cos / std::f64::consts::PI),
+                Some(0.0),
+                Some(0.0),
+            ]
+        },
+        keep: lit_pixels,
+        tolerance: 0.0,
+    }
+}
+
+/// Lights on, just above and through a floor: no closed form, only no
+/// invalid sample and a finite mean for every term.
+fn light_on_surface(settings: RenderSettings) -> Setup {
+    Setup {
+        scene: light_on_surface_scene(),
+        settings,
+        light_modes: ALL_MODES,
+        closed: false,
+        exact: |_| [None; Term::COUNT],
+        keep: every_pixel,
+        tolerance: 0.0,
+    }
+}
+
+/// The scene and settings a render case uses (to inspect or render it
+/// elsewhere); `None` for the cases that are not renders.
+pub fn case_scene(case: Case, effort: Effort) -> Option<(Scene, RenderSettings)> {
+    if matches!(case, Case::SphereLeaks | Case::MillionSamples) {
+        return None;
+    }
+    let setup = setup(case, effort);
+    Some((setup.scene, setup.settings))
+}
+
+/// The scenes of a render case: the scale cases also put a point light in a
+/// sphere of their size and place, for the light modes.
+fn setups(case: Case, effort: Effort) -> Vec<Setup> {
+    let (width, height, _) = film_size(effort);
+    let settings = RenderSettings {
+        width,
+        height,
+        terms: TermSet::ALL,
+        max_bounces: 16,
+        ..RenderSettings::default()
+    };
+    let point = |radius: f32, centre: Vec3| point_in_sphere(&settings, radius, centre, 1);
+    let mut list = vec![setup(case, effort)];
+    match case {
+        Case::TinyScale => list.push(point(1e-4, Vec3::ZERO)),
+        Case::HugeScale => list.push(point(1e5, Vec3::ZERO)),
+        // 1/d² from f32 positions 1e5 m out: 10⁻⁴ low
+        Case::FarFromOrigin => list.push(Setup {
+            tolerance: 1e-3,
+            ..point(10.0, Vec3::new(1e5, -1e5, 1e5))
+        }),
+        _ => {}
+    }
+    list
+}
+
+pub(super) fn render_case(case: Case, effort: Effort) -> CaseReport {
+    let mut report = CaseReport::new(case);
+    for setup in setups(case, effort) {
+        render_setup(&setup, effort, &mut report);
+    }
+    report
+}
+
+/// Renders `setup` in each of its light modes, filing what it measured in `report`.
+fn render_setup(setup: &Setup, effort: Effort, report: &mut CaseReport) {
+    let (_, _, passes) = film_size(effort);
+    for &mode in setup.light_modes {
+        let settings = RenderSettings {
+            light_mode: mode,
+            ..setup.settings.clone()
+        };
+        let variant = format!("{}, {} lights", setup.scene.name, mode.label());
+        let (film, counts) = render_scene(&setup.scene, &settings, passes);
+        report.samples += film.pixel_count() as u64 * passes as u64;
+        report.add_counts(&counts, setup.closed, &variant);
+        let exact = (setup.exact)(mode);
+        for term in Term::ALL {
+            if let Some(exact) = exact[term.index()] {
+                let measured = term_mean(&film, term, |i| (setup.keep)(&film, i));
+                report.check_energy(&variant, term, measured, exact, setup.tolerance);
+            }
+        }
+        for term in Term::ALL {
+            let mean = term_mean(&film, term, |_| true);
+            if !mean.value.is_finite() {
+                report
+                    .failures
+                    .push(format!("{variant}: {} mean {}", term.label(), mean.value));
+            }
+        }
+    }
+}
