@@ -2,11 +2,15 @@
 //! negative sample reaches the film, no ray leaks out of a closed scene, and
 //! every known energy comes back within the noise (`src/tools/stress/`).
 
+use lumiere::render::settings::Choice;
 use lumiere::tools::stress::{Case, Effort, table};
 
 #[test]
 fn every_stress_case_passes_without_invalid_samples_or_leaks() {
-    let reports: Vec<_> = Case::ALL.iter().map(|c| c.run(Effort::Quick)).collect();
+    let reports: Vec<_> = Case::all()
+        .into_iter()
+        .map(|c| c.run(Effort::Quick))
+        .collect();
     let printed = table(&reports);
     for report in &reports {
         assert_eq!(report.invalid_samples, 0, "{printed}");

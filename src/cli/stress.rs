@@ -3,6 +3,7 @@
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
+use lumiere::render::settings::Choice;
 use lumiere::tools::stress::{Case, Effort, table};
 
 use super::Failure;
@@ -26,7 +27,7 @@ pub fn run(args: &StressArgs) -> Result<(), Failure> {
         Effort::Full
     };
     let cases: Vec<Case> = if args.only.is_empty() {
-        Case::ALL.to_vec()
+        Case::all()
     } else {
         args.only.clone()
     };

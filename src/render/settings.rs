@@ -515,7 +515,7 @@ pub trait Choice: Copy + IntoEnumIterator + Into<&'static str> {
 impl<T: Copy + IntoEnumIterator + Into<&'static str>> Choice for T {}
 
 /// The parse error of an unknown name `s` of the closed set `T`.
-fn unknown_choice<T: Choice>(s: &str) -> String {
+pub fn unknown_choice<T: Choice>(s: &str) -> String {
     let names: Vec<&str> = T::iter().map(T::label).collect();
     format!(
         "unknown value '{s}' (expected one of: {})",

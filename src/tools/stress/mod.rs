@@ -35,6 +35,9 @@ mod report;
 mod scenes;
 mod sphere_leaks;
 
+use strum::{Display, EnumIter, EnumString, IntoStaticStr};
+
+use crate::render::settings::unknown_choice;
 use std::time::Instant;
 
 pub use cases::case_scene;
@@ -50,7 +53,8 @@ pub enum Effort {
 }
 
 /// The cases of the suite.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, EnumIter, IntoStaticStr, EnumString, Display)]
+#[strum(serialize_all = "kebab-case", parse_err_ty = String, parse_err_fn = unknown_choice::<Case>)]
 pub enum Case {
     /// The furnace 0.1 mm across.
     TinyScale,
@@ -79,38 +83,6 @@ pub enum Case {
 }
 
 impl Case {
-    pub const ALL: [Case; 12] = [
-        Case::TinyScale,
-        Case::HugeScale,
-        Case::FarFromOrigin,
-        Case::Grazing,
-        Case::Slivers,
-        Case::CoincidentFaces,
-        Case::LightOnSurface,
-        Case::SharpPhong,
-        Case::MirrorCorridor,
-        Case::SphereLeaks,
-        Case::WhiteFurnace,
-        Case::MillionSamples,
-    ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Case::TinyScale => "tiny-scale",
-            Case::HugeScale => "huge-scale",
-            Case::FarFromOrigin => "far-from-origin",
-            Case::Grazing => "grazing",
-            Case::Slivers => "slivers",
-            Case::CoincidentFaces => "coincident-faces",
-            Case::LightOnSurface => "light-on-surface",
-            Case::SharpPhong => "sharp-phong",
-            Case::MirrorCorridor => "mirror-corridor",
-            Case::SphereLeaks => "sphere-leaks",
-            Case::WhiteFurnace => "white-furnace",
-            Case::MillionSamples => "million-samples",
-        }
-    }
-
     pub fn description(self) -> &'static str {
         match self {
             Case::TinyScale => "furnace of radius 1e-4 m (rho 0.5): L_k = rho^k E",
@@ -147,25 +119,5 @@ impl Case {
         report.case = self;
         report.time = started.elapsed();
         report
-    }
-}
-
-impl std::fmt::Display for Case {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl std::str::FromStr for Case {
-    type Err = String;
-
-    fn from_str(s: &str) -> Result<Self, String> {
-        Case::ALL
-            .into_iter()
-            .find(|c| c.name() == s)
-            .ok_or_else(|| {
-                let names: Vec<&str> = Case::ALL.iter().map(|c| c.name()).collect();
-                format!("unknown case '{s}' (cases: {})", names.join(", "))
-            })
     }
 }

@@ -8,6 +8,7 @@ use std::time::Duration;
 
 use super::Case;
 use crate::render::film::Film;
+use crate::render::settings::Choice;
 use crate::render::settings::Term;
 use crate::transport::counts::RayCounts;
 
@@ -168,7 +169,7 @@ pub fn table(reports: &[CaseReport]) -> String {
         let z = r.worst_z.map_or("—".to_string(), |z| format!("{z:.2}"));
         out += &format!(
             "{:<18} {:>8} {:>10} {:>8} {:>7} {:>12} {:>7} {:>7.2}s  {}\n",
-            r.case.name(),
+            r.case.label(),
             r.variants,
             r.samples,
             r.invalid_samples,
