@@ -12,7 +12,7 @@ use lumiere::analysis::metrics::image_error;
 use lumiere::render::color::srgb_to_linear;
 use lumiere::render::export::to_srgb8;
 use lumiere::scene::builtin;
-use lumiere::tools::strip::StripLayout;
+use lumiere::tools::strip::{BAND_COLOR, StripLayout};
 use lumiere::{Term, TermSet};
 
 fn lumiere() -> Command {
@@ -107,9 +107,9 @@ fn tiles_are_the_renders_of_their_sample_counts() {
 
     let strip = image::open(&strip_path).unwrap().to_rgb8();
     let layout = StripLayout::new(width, height, labels(&["1 spp", "3 spp", "8 spp"]), vec![]);
-    // "8 spp" fits 40 px at 2× only: bands of 14·2 px
-    assert_eq!(layout.band_height(), 28);
-    assert_eq!(strip.dimensions(), (3 * width, height + 28));
+    let band = layout.band_height();
+    assert!(band > layout.text_size, "{layout:?}");
+    assert_eq!(strip.dimensions(), (3 * width, height + band));
 
     let mut tiles = Vec::new();
     for (column, spp) in ["1", "3", "8"].into_iter().enumerate() {
@@ -129,9 +129,23 @@ fn tiles_are_the_renders_of_their_sample_counts() {
         worst_difference(&tiles[0], &tiles[1]) > 10,
         "the tiles should differ"
     );
-    // the band below the tiles is dark, with light label pixels
-    let band = crop(&strip, 0, height, width, 28);
-    assert!(band.pixels().any(|p| p.0[0] > 200) && band.pixels().any(|p| p.0[0] < 40));
+    // the bands below the tiles are dark, each with its light label, whole:
+    // no label pixel on the band's edges
+    for column in 0..3 {
+        let (x0, _) = layout.tile_origin(0, column);
+        let band = crop(&strip, x0, height, width, band);
+        assert!(band.pixels().any(|p| p.0[0] > 200) && band.pixels().any(|p| p.0[0] < 40));
+        let edge = |x: u32, y: u32| x == 0 || y == 0 || x == width - 1 || y == band.height() - 1;
+        let dark = BAND_COLOR[0] + 4;
+        let touching = band
+            .enumerate_pixels()
+            .filter(|(x, y, p)| edge(*x, *y) && p.0[0] > dark);
+        assert_eq!(
+            touching.count(),
+            0,
+            "the label of column {column} is clipped"
+        );
+    }
 }
 
 /// Along a row the image converges: the last tile is closer to a converged

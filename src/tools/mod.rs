@@ -3,5 +3,6 @@
 //! convergence strips for slides (`lumiere strip`).
 
 pub mod bench;
+pub mod font;
 pub mod stress;
 pub mod strip;

@@ -6,13 +6,21 @@
 //! tile at N spp is the same image as a render of N spp with the same seed,
 //! and the row shows one sequence converging (noise falling as 1/√N).
 //!
-//! Layout, with n counts, R rows, tiles of w × h pixels and glyph scale s
-//! (8 × 8 font, s ≥ 2):
+//! Labels are set in the Hack font ([`crate::tools::font`]), rasterized by
+//! ab_glyph and blended over the dark bands by their coverage (antialiased).
+//! Their size t is the height from the font's ascent to its descent, in
+//! pixels: the smaller of w/8 and h/6 for tiles of w × h pixels (32 px for
+//! 256 × 192), within 14..=64 px, and smaller if the longest column label
+//! would not fit a tile with its margins (down to 14 px: narrower tiles clip
+//! their labels).
+//!
+//! Layout, with n counts, R rows, tiles of w × h pixels, text size t and
+//! margin m = ⌈t/3⌉:
 //!
 //! ```text
-//! band b = 14·s           label band below each tile (8·s glyphs, 3·s margins)
+//! band b = t + 2·m        label band below each tile, the text centred in it
 //! left L = 0              without row labels,
-//!        = 8·s·k + 6·s    with them (k: characters of the longest row label)
+//!        = ⌈W⌉ + 2·m      with them (W: width of the longest row label)
 //! width  = L + n·w
 //! height = R·(h + b)
 //! tile (r, c) at (L + c·w, r·(h + b)); its band at (L + c·w, r·(h + b) + h)
@@ -27,6 +35,7 @@ use std::str::FromStr;
 use std::sync::Arc;
 use std::time::Instant;
 
+use ab_glyph::{Font, GlyphId, PxScale, ScaleFont, point};
 use image::{ImageBuffer, Rgb};
 
 use crate::render::context::RenderContext;
@@ -39,17 +48,21 @@ use crate::render::settings::{
 };
 use crate::render::{PassBuffer, RenderStats, render_pass};
 use crate::scene::Scene;
+use crate::tools::font::hack_regular;
 use crate::transport::splitting::choose_continuations;
 
 /// Largest strip side in pixels: a PNG a slide can hold, a buffer memory can.
 pub const MAX_STRIP_SIDE: u64 = 16384;
 /// Largest sample count of a tile.
 pub const MAX_SAMPLE_COUNT: u32 = 100_000_000;
-/// Glyph cell of the font, in font pixels.
-const GLYPH: u32 = 8;
-/// Magnifications tried for the labels, largest first: at least 2 so that
-/// labels read on slides.
-const SCALES: [u32; 3] = [4, 3, 2];
+/// Label text size (ascent to descent, in pixels) per pixel of tile width…
+const TEXT_PER_TILE_WIDTH: f32 = 1.0 / 8.0;
+/// …and at most this per pixel of tile height (equal for 4:3 tiles).
+const TEXT_PER_TILE_HEIGHT: f32 = 1.0 / 6.0;
+/// Smallest label text: still legible on a slide.
+pub const MIN_TEXT_SIZE: u32 = 14;
+/// Largest label text.
+pub const MAX_TEXT_SIZE: u32 = 64;
 /// Background of the label bands and column.
 pub const BAND_COLOR: [u8; 3] = [24, 24, 24];
 /// Colour of the label glyphs.
@@ -316,31 +329,40 @@ pub struct StripLayout {
     pub column_labels: Vec<String>,
     /// One per row, drawn left of the row; empty: one row, no label column.
     pub row_labels: Vec<String>,
-    /// Glyph magnification (2 to 4).
-    pub scale: u32,
+    /// Height of the label text from the font's ascent to its descent, in
+    /// pixels ([`MIN_TEXT_SIZE`] to [`MAX_TEXT_SIZE`]).
+    pub text_size: u32,
 }
 
 impl StripLayout {
     /// The layout of `column_labels.len()` tiles of `tile_width × tile_height`
-    /// per row; glyphs as large as the column labels allow within a tile
-    /// (at most 4×, at least 2×: narrower tiles clip their labels).
+    /// per row; text of tile_width/8 pixels (tile_height/6 if smaller),
+    /// smaller still if a column label would not fit a tile with its
+    /// margins, but at least [`MIN_TEXT_SIZE`] (narrower tiles clip their
+    /// labels).
     pub fn new(
         tile_width: u32,
         tile_height: u32,
         column_labels: Vec<String>,
         row_labels: Vec<String>,
     ) -> Self {
-        let longest = column_labels.iter().map(|l| l.len()).max().unwrap_or(0) as u32;
-        let scale = SCALES
-            .into_iter()
-            .find(|s| (longest * GLYPH + 6) * s <= tile_width)
-            .unwrap_or(2);
+        let size = (tile_width as f32 * TEXT_PER_TILE_WIDTH)
+            .min(tile_height as f32 * TEXT_PER_TILE_HEIGHT);
+        let mut text_size = (size.round() as u32).clamp(MIN_TEXT_SIZE, MAX_TEXT_SIZE);
+        let fits = |size: u32| {
+            column_labels
+                .iter()
+                .all(|l| text_width(l, size).ceil() as u32 + 2 * margin(size) <= tile_width)
+        };
+        while text_size > MIN_TEXT_SIZE && !fits(text_size) {
+            text_size -= 1;
+        }
         Self {
             tile_width,
             tile_height,
             column_labels,
             row_labels,
-            scale,
+            text_size,
         }
     }
 
@@ -352,15 +374,24 @@ impl StripLayout {
         self.row_labels.len().max(1) as u32
     }
 
+    /// Space between a label and the edges of its band or column.
+    pub fn margin(&self) -> u32 {
+        margin(self.text_size)
+    }
+
     /// Height of the label band below each tile.
     pub fn band_height(&self) -> u32 {
-        14 * self.scale
+        self.text_size + 2 * self.margin()
     }
 
     /// Width of the row label column (0 without row labels).
     pub fn label_column_width(&self) -> u32 {
-        let longest = self.row_labels.iter().map(|l| l.len()).max();
-        longest.map_or(0, |k| (GLYPH * k as u32 + 6) * self.scale)
+        let widest = self
+            .row_labels
+            .iter()
+            .map(|l| text_width(l, self.text_size))
+            .max_by(f32::total_cmp);
+        widest.map_or(0, |w| w.ceil() as u32 + 2 * self.margin())
     }
 
     /// Strip width in pixels (u64: checked against [`MAX_STRIP_SIDE`] before use).
@@ -416,7 +447,7 @@ impl StripImage {
             layout,
         };
         let layout = image.layout.clone();
-        let (band, scale) = (layout.band_height(), layout.scale);
+        let (band, size) = (layout.band_height(), layout.text_size);
         let left = layout.label_column_width();
         for row in 0..layout.rows() {
             let (_, top) = layout.tile_origin(row, 0);
@@ -424,13 +455,13 @@ impl StripImage {
                 let column = Rect::new(0, top, left, layout.tile_height + band);
                 image.fill(column, BAND_COLOR);
                 let label = &layout.row_labels[row as usize];
-                image.draw_text(column, label, scale);
+                image.draw_text(column, label, size);
             }
             for (c, label) in layout.column_labels.iter().enumerate() {
                 let (x, y) = layout.tile_origin(row, c as u32);
                 let rect = Rect::new(x, y + layout.tile_height, layout.tile_width, band);
                 image.fill(rect, BAND_COLOR);
-                image.draw_text(rect, label, scale);
+                image.draw_text(rect, label, size);
             }
         }
         image
@@ -493,35 +524,75 @@ impl StripImage {
         self.pixels[i..i + 3].copy_from_slice(&color);
     }
 
-    /// Draws `text` centred in `rect`, glyphs magnified `scale` times and
-    /// clipped to `rect`; characters outside ASCII print as '?'.
-    fn draw_text(&mut self, rect: Rect, text: &str, scale: u32) {
-        let cell = GLYPH * scale;
-        let text_width = text.chars().count() as i64 * cell as i64;
-        let x0 = rect.x as i64 + (rect.width as i64 - text_width) / 2;
-        let y0 = rect.y as i64 + (rect.height as i64 - cell as i64) / 2;
-        for (i, c) in text.chars().enumerate() {
-            let c = if c.is_ascii() { c } else { '?' };
-            let glyph = font8x8::legacy::BASIC_LEGACY[c as usize];
-            for (gy, bits) in glyph.into_iter().enumerate() {
-                for gx in 0..GLYPH {
-                    // bit 0 is the leftmost pixel of a glyph row
-                    if bits >> gx & 1 == 0 {
-                        continue;
-                    }
-                    for dy in 0..scale as i64 {
-                        for dx in 0..scale as i64 {
-                            let x = x0 + i as i64 * cell as i64 + (gx * scale) as i64 + dx;
-                            let y = y0 + (gy as u32 * scale) as i64 + dy;
-                            if rect.contains(x, y) {
-                                self.set(x as u32, y as u32, TEXT_COLOR);
-                            }
-                        }
-                    }
-                }
-            }
+    /// Blends `color` over pixel (`x`, `y`) by `coverage` (0 to 1).
+    fn blend(&mut self, x: u32, y: u32, color: [u8; 3], coverage: f32) {
+        let a = coverage.clamp(0.0, 1.0);
+        let i = (y as usize * self.width() as usize + x as usize) * 3;
+        for (under, over) in self.pixels[i..i + 3].iter_mut().zip(color) {
+            let under_f = *under as f32;
+            *under = (under_f + (over as f32 - under_f) * a).round() as u8;
         }
     }
+
+    /// Draws `text` of `size` pixels (ascent to descent) centred in `rect`,
+    /// antialiased and clipped to `rect`; characters the font lacks print
+    /// as '?'.
+    fn draw_text(&mut self, rect: Rect, text: &str, size: u32) {
+        let font = hack_regular();
+        let scale = PxScale::from(size as f32);
+        let (glyphs, width) = set_text(text, size);
+        // whole pixels for the pen's start and the baseline: the same label
+        // is drawn alike in every band
+        let left = (rect.x as f32 + (rect.width as f32 - width) / 2.0).round();
+        let top = rect.y as f32 + (rect.height as f32 - size as f32) / 2.0;
+        let baseline = (top + font.as_scaled(scale).ascent()).round();
+        for (id, x) in glyphs {
+            let glyph = id.with_scale_and_position(scale, point(left + x, baseline));
+            let Some(outline) = font.outline_glyph(glyph) else {
+                continue; // a space
+            };
+            let bounds = outline.px_bounds();
+            outline.draw(|gx, gy, coverage| {
+                let x = bounds.min.x as i64 + gx as i64;
+                let y = bounds.min.y as i64 + gy as i64;
+                if rect.contains(x, y) {
+                    self.blend(x as u32, y as u32, TEXT_COLOR, coverage);
+                }
+            });
+        }
+    }
+}
+
+/// The glyphs of `text` at `size` pixels, each with its pen position from
+/// the start (advances and kerning), and the width of the whole: '?' for
+/// the characters the font lacks.
+fn set_text(text: &str, size: u32) -> (Vec<(GlyphId, f32)>, f32) {
+    let font = hack_regular();
+    let scaled = font.as_scaled(PxScale::from(size as f32));
+    let mut glyphs = Vec::with_capacity(text.len());
+    let mut x = 0.0;
+    for c in text.chars() {
+        let id = match font.glyph_id(c) {
+            GlyphId(0) => font.glyph_id('?'),
+            id => id,
+        };
+        if let Some(&(previous, _)) = glyphs.last() {
+            x += scaled.kern(previous, id);
+        }
+        glyphs.push((id, x));
+        x += scaled.h_advance(id);
+    }
+    (glyphs, x)
+}
+
+/// Width of `text` at `size` pixels.
+fn text_width(text: &str, size: u32) -> f32 {
+    set_text(text, size).1
+}
+
+/// Space around labels of `size` pixels.
+fn margin(size: u32) -> u32 {
+    size.div_ceil(3)
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -686,35 +757,96 @@ mod tests {
 
     #[test]
     fn layout_sizes_and_tile_places() {
-        let plain = StripLayout::new(160, 120, labels(&["1 spp", "4 spp", "256 spp"]), vec![]);
-        // "256 spp" at 3×: (7·8 + 6)·3 = 186 > 160, at 2×: 124 ≤ 160
-        assert_eq!(plain.scale, 2);
-        assert_eq!(plain.band_height(), 28);
-        assert_eq!((plain.width(), plain.height()), (3 * 160, 120 + 28));
+        let spp = labels(&["1 spp", "4 spp", "256 spp"]);
+        // the text grows with the tiles (32 px at 256 × 192 px) and fits them
+        let at = |width: u32| StripLayout::new(width, width * 3 / 4, spp.clone(), vec![]);
+        let sizes = [128, 256, 512].map(|w| at(w).text_size);
+        assert_eq!(sizes, [16, 32, 64]);
+        // wide, low tiles take the text their height allows
+        let low = StripLayout::new(512, 96, spp.clone(), vec![]);
+        assert_eq!(low.text_size, 16);
+        for width in [128, 160, 256, 512, 2048] {
+            let layout = at(width);
+            let widest = text_width("256 spp", layout.text_size);
+            assert!(widest > 3.0 * layout.text_size as f32, "{width}: {widest}");
+            assert!(
+                widest as u32 + 2 * layout.margin() <= width,
+                "{width}: '256 spp' is {widest} px at {} px",
+                layout.text_size
+            );
+        }
+        assert_eq!(at(2048).text_size, MAX_TEXT_SIZE);
+        // a long label takes smaller text rather than overflow its tile
+        let long = StripLayout::new(400, 300, labels(&["1 spp", "1048576 spp (8 rows)"]), vec![]);
+        assert!(
+            MIN_TEXT_SIZE < long.text_size && long.text_size < 50,
+            "{long:?}"
+        );
+        assert!(
+            text_width("1048576 spp (8 rows)", long.text_size) as u32 + 2 * long.margin() <= 400
+        );
+        // narrow tiles keep the smallest legible text, and clip it
+        let narrow = StripLayout::new(24, 16, labels(&["1 spp", "4 spp"]), vec![]);
+        assert_eq!(narrow.text_size, MIN_TEXT_SIZE);
+
+        let plain = at(160);
+        let band = plain.band_height();
+        assert_eq!((plain.text_size, band), (20, 34));
+        assert_eq!(
+            (plain.width(), plain.height()),
+            (3 * 160, 120 + band as u64)
+        );
         assert_eq!(plain.tile_origin(0, 2), (320, 0));
+        assert_eq!(plain.label_column_width(), 0);
 
         let rows = StripLayout::new(
             640,
             480,
             labels(&["1 spp", "16 spp"]),
-            labels(&["area", "mis"]),
+            labels(&["area", "solid-angle"]),
         );
-        assert_eq!(rows.scale, 4);
-        let left = (4 * 8 + 6) * 4;
-        assert_eq!(rows.label_column_width(), left);
+        assert_eq!(rows.text_size, 64);
+        let band = rows.band_height();
+        let left = rows.label_column_width();
+        let widest = text_width("solid-angle", 64);
+        assert_eq!(left, widest.ceil() as u32 + 2 * rows.margin());
+        assert!(widest > text_width("area", 64));
         assert_eq!(rows.width(), left as u64 + 2 * 640);
-        assert_eq!(rows.height(), 2 * (480 + 56));
-        assert_eq!(rows.tile_origin(1, 1), (left + 640, 480 + 56));
+        assert_eq!(rows.height(), 2 * (480 + band as u64));
+        assert_eq!(rows.tile_origin(1, 1), (left + 640, 480 + band));
         assert!(rows.check_size().is_ok());
 
         let huge = StripLayout::new(4000, 3000, labels(&["1 spp"; 5]), vec![]);
         let error = huge.check_size().unwrap_err();
-        assert!(error.contains("20000×3056"), "{error}");
+        let height = 3000 + huge.band_height();
+        assert!(error.contains(&format!("20000×{height}")), "{error}");
+    }
+
+    /// The pixels of `image` in the rectangle that differ from the band
+    /// colour: a label's ink.
+    fn ink(image: &StripImage, x0: u32, y0: u32, width: u32, height: u32) -> Vec<(u32, u32)> {
+        (y0..y0 + height)
+            .flat_map(|y| (x0..x0 + width).map(move |x| (x, y)))
+            .filter(|&(x, y)| image.pixel(x, y) != BAND_COLOR)
+            .collect()
+    }
+
+    /// (left, top, right, bottom) of the ink, inclusive.
+    fn ink_box(ink: &[(u32, u32)]) -> (u32, u32, u32, u32) {
+        ink.iter()
+            .fold((u32::MAX, u32::MAX, 0, 0), |(l, t, r, b), &(x, y)| {
+                (l.min(x), t.min(y), r.max(x), b.max(y))
+            })
     }
 
     #[test]
     fn tiles_land_in_place_and_labels_are_drawn_on_dark_bands() {
-        let layout = StripLayout::new(48, 20, labels(&["1 spp", "8 spp"]), labels(&["ab", "c"]));
+        let layout = StripLayout::new(
+            128,
+            96,
+            labels(&["1 spp", "16 spp"]),
+            labels(&["area", "mis"]),
+        );
         let mut image = StripImage::new(layout.clone());
         let (w, h) = (layout.tile_width, layout.tile_height);
         for row in 0..2 {
@@ -723,7 +855,8 @@ mod tests {
                 image.put_tile(row, column, &vec![value; (w * h * 3) as usize]);
             }
         }
-        let band = layout.band_height();
+        let (band, size) = (layout.band_height(), layout.text_size);
+        let left = layout.label_column_width();
         for row in 0..2u32 {
             for column in 0..2u32 {
                 let value = (10 + 40 * row + 80 * column) as u8;
@@ -732,38 +865,97 @@ mod tests {
                 for (x, y) in [(x0, y0), (x0 + w - 1, y0 + h - 1)] {
                     assert_eq!(image.pixel(x, y), [value; 3], "tile ({row}, {column})");
                 }
-                // its band is dark with light glyph pixels, none outside the band
-                let band_pixels: Vec<[u8; 3]> = (y0 + h..y0 + h + band)
-                    .flat_map(|y| (x0..x0 + w).map(move |x| (x, y)))
-                    .map(|(x, y)| image.pixel(x, y))
-                    .collect();
-                let text = band_pixels.iter().filter(|p| **p == TEXT_COLOR).count();
-                let dark = band_pixels.iter().filter(|p| **p == BAND_COLOR).count();
-                assert!(text > 20, "band ({row}, {column}) has {text} text pixels");
-                assert_eq!(text + dark, band_pixels.len());
+                // its band is dark with light, antialiased text: every pixel a
+                // blend of the two colours (grey between them)
+                let at = format!("band ({row}, {column})");
+                let ink = ink(&image, x0, y0 + h, w, band);
+                for &(x, y) in &ink {
+                    let [r, g, b] = image.pixel(x, y);
+                    assert!(r == g && g == b, "{at}: ({x}, {y}) is {:?}", [r, g, b]);
+                    assert!((BAND_COLOR[0]..=TEXT_COLOR[0]).contains(&r), "{at}: {r}");
+                }
+                let full = ink
+                    .iter()
+                    .filter(|&&(x, y)| image.pixel(x, y)[0] >= 200)
+                    .count();
+                let partial = ink.len() - full;
+                assert!(full > 2 * size as usize, "{at}: {full} solid text pixels");
+                assert!(partial > 0, "{at}: no antialiasing");
+                // the whole label is in the band with room around it: not
+                // clipped, centred, as tall as the text size allows
+                let (l, t, r, b) = ink_box(&ink);
+                assert!(l > x0 && r < x0 + w - 1, "{at}: ink from x {l} to {r}");
+                assert!(
+                    t > y0 + h && b < y0 + h + band - 1,
+                    "{at}: ink from y {t} to {b}"
+                );
+                let (space_left, space_right) = (l - x0, x0 + w - 1 - r);
+                assert!(
+                    space_left.abs_diff(space_right) <= size / 4,
+                    "{at}: {space_left} | {space_right}"
+                );
+                let (space_above, space_below) = (t - (y0 + h), y0 + h + band - 1 - b);
+                assert!(
+                    space_above.abs_diff(space_below) <= size / 3,
+                    "{at}: {space_above} / {space_below}"
+                );
+                // digits and the descender of 'p': most of the text size
+                let height = b - t + 1;
+                assert!(
+                    (size / 2..=size).contains(&height),
+                    "{at}: ink {height} px high"
+                );
+                let label = &layout.column_labels[column as usize];
+                let width = text_width(label, size);
+                assert!((r - l + 1) as f32 > 0.8 * width && ((r - l + 1) as f32) < width + 2.0);
             }
-            // the row label column holds text too
+            // the row label column holds its label, whole
             let (_, y0) = layout.tile_origin(row, 0);
-            let text = (y0..y0 + h + band)
-                .flat_map(|y| (0..layout.label_column_width()).map(move |x| (x, y)))
-                .filter(|&(x, y)| image.pixel(x, y) == TEXT_COLOR)
-                .count();
-            assert!(text > 10, "row {row} label has {text} text pixels");
+            let ink = ink(&image, 0, y0, left, h + band);
+            assert!(
+                ink.len() > 4 * size as usize,
+                "row {row}: {} ink pixels",
+                ink.len()
+            );
+            let (l, t, r, b) = ink_box(&ink);
+            assert!(
+                l > 0 && r < left - 1 && t > y0 && b < y0 + h + band - 1,
+                "row {row}"
+            );
         }
-        // lit pixels are the font's, magnified scale × scale
+    }
+
+    #[test]
+    fn labels_stay_in_their_band() {
+        // a label wider than its tile is clipped to its band: the next band
+        // (an empty label) and the tiles (black until placed) keep no ink
+        let layout = StripLayout::new(24, 16, labels(&["1048576 spp", ""]), vec![]);
+        let image = StripImage::new(layout.clone());
+        let (w, h, band) = (24, 16, layout.band_height());
+        assert_eq!(ink(&image, 24, h, w, band), []);
+        let clipped = ink(&image, 0, h, w, band);
+        assert!(clipped.len() > 50, "{}", clipped.len());
+        let (l, _, r, _) = ink_box(&clipped);
+        assert!(
+            l < 4 && r > w - 5,
+            "the clipped label spans its band: {l}..={r}"
+        );
+        for y in 0..h {
+            for x in 0..2 * w {
+                assert_eq!(image.pixel(x, y), [0; 3], "({x}, {y})");
+            }
+        }
+
+        // more text, more ink; none without text
         let lit = |text: &str| {
             let layout = StripLayout::new(200, 4, labels(&[text]), vec![]);
             let image = StripImage::new(layout);
-            let count = (0..image.height())
-                .flat_map(|y| (0..200).map(move |x| (x, y)))
-                .filter(|&(x, y)| image.pixel(x, y) == TEXT_COLOR)
-                .count();
-            (count, image.layout.scale as usize)
+            ink(&image, 0, 4, 200, image.height() - 4).len()
         };
-        assert_eq!(lit("").0, 0);
-        assert!(lit("1 spp").0 > lit("1").0);
-        // '1' is 0x0C, 0x0E, 0x0C, 0x0C, 0x0C, 0x0C, 0x3F, 0x00: 19 font pixels
-        let (count, scale) = lit("1");
-        assert_eq!(count, 19 * scale * scale);
+        assert_eq!(lit(""), 0);
+        assert_eq!(lit("   "), 0);
+        assert!(lit("1 spp") > lit("1") && lit("1") > 0);
+        // a character the font lacks prints as '?'
+        assert_eq!(lit("\u{10FFFD}"), lit("?"));
     }
 }

@@ -1,8 +1,8 @@
 //! The bench's figures, drawn with plotters into an RGB buffer and saved as PNG.
 //!
-//! Text uses the Hack font embedded in the binary (`assets/fonts/`,
-//! MIT/Bitstream Vera licence), registered with plotters' ab_glyph
-//! renderer: no system font or fontconfig is needed.
+//! Text uses the Hack font embedded in the binary ([`crate::tools::font`]),
+//! registered with plotters' ab_glyph renderer: no system font or
+//! fontconfig is needed.
 
 use std::path::Path;
 use std::sync::Once;
@@ -10,12 +10,13 @@ use std::sync::Once;
 use plotters::backend::BitMapBackend;
 use plotters::prelude::*;
 
+use crate::tools::font::HACK_REGULAR;
+
 use super::BenchError;
 use super::csv::ErrorRow;
 use super::error_curve::{RELMSE_THRESHOLDS, curves};
 use super::scaling::{Axis, ScalingRow};
 
-const FONT: &[u8] = include_bytes!("../../../assets/fonts/Hack-Regular.ttf");
 const FAMILY: &str = "sans-serif";
 const SIZE: (u32, u32) = (900, 600);
 
@@ -23,7 +24,7 @@ fn register_font() {
     static REGISTER: Once = Once::new();
     REGISTER.call_once(|| {
         // the embedded font is valid: a failure would only leave labels out
-        let _ = plotters::style::register_font(FAMILY, FontStyle::Normal, FONT);
+        let _ = plotters::style::register_font(FAMILY, FontStyle::Normal, HACK_REGULAR);
     });
 }
 

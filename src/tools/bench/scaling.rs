@@ -19,6 +19,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use glam::Vec3;
+use serde::Serialize;
 use serde_json::json;
 
 use crate::render::settings::RenderSettings;
@@ -27,6 +28,7 @@ use crate::scene::{Material, Scene, builtin, gltf};
 use crate::transport::splitting::choose_continuations;
 use crate::{Film, RenderContext};
 
+use super::csv::{Decimals, csv_text};
 use super::memory::{MemoryUse, measure};
 use super::throughput::{fastest_replay, recorded_rays};
 use super::{BenchError, Progress, thread_pool};
@@ -126,35 +128,66 @@ impl ScalingRow {
     }
 }
 
-/// The scaling CSV text (memory columns empty when not measured).
-pub fn scaling_csv(rows: &[ScalingRow]) -> String {
-    let mut text = String::from(
-        "axis,triangles,width,height,threads,load_seconds,build_seconds,peak_bytes_per_triangle,retained_bytes_per_triangle,spp,seconds_per_spp,mrays_per_second,renderer_over_traversal\n",
-    );
-    for r in rows {
-        let (peak, retained) = r
-            .bytes_per_triangle()
-            .map_or((String::new(), String::new()), |(p, k)| {
-                (format!("{p:.1}"), format!("{k:.1}"))
-            });
-        let ratio = r
-            .traversal_ratio()
-            .map_or(String::new(), |q| format!("{q:.3}"));
-        text += &format!(
-            "{},{},{},{},{},{:.6},{:.6},{peak},{retained},{},{:.6},{:.3},{ratio}\n",
-            r.axis,
-            r.triangles,
-            r.width,
-            r.height,
-            r.threads,
-            r.load_seconds,
-            r.build_seconds,
-            r.spp,
-            r.seconds_per_spp(),
-            r.mrays_per_second()
-        );
+/// The header of the scaling CSV, in order.
+pub const SCALING_COLUMNS: [&str; 13] = [
+    "axis",
+    "triangles",
+    "width",
+    "height",
+    "threads",
+    "load_seconds",
+    "build_seconds",
+    "peak_bytes_per_triangle",
+    "retained_bytes_per_triangle",
+    "spp",
+    "seconds_per_spp",
+    "mrays_per_second",
+    "renderer_over_traversal",
+];
+
+/// One line of the scaling CSV: a [`ScalingRow`] with its derived figures.
+#[derive(Serialize)]
+struct ScalingRecord {
+    axis: &'static str,
+    triangles: u64,
+    width: u32,
+    height: u32,
+    threads: usize,
+    load_seconds: Decimals<6>,
+    build_seconds: Decimals<6>,
+    peak_bytes_per_triangle: Option<Decimals<1>>,
+    retained_bytes_per_triangle: Option<Decimals<1>>,
+    spp: u32,
+    seconds_per_spp: Decimals<6>,
+    mrays_per_second: Decimals<3>,
+    renderer_over_traversal: Option<Decimals<3>>,
+}
+
+impl From<&ScalingRow> for ScalingRecord {
+    fn from(r: &ScalingRow) -> Self {
+        let bytes = r.bytes_per_triangle();
+        Self {
+            axis: r.axis.label(),
+            triangles: r.triangles,
+            width: r.width,
+            height: r.height,
+            threads: r.threads,
+            load_seconds: Decimals(r.load_seconds),
+            build_seconds: Decimals(r.build_seconds),
+            peak_bytes_per_triangle: bytes.map(|(peak, _)| Decimals(peak)),
+            retained_bytes_per_triangle: bytes.map(|(_, retained)| Decimals(retained)),
+            spp: r.spp,
+            seconds_per_spp: Decimals(r.seconds_per_spp()),
+            mrays_per_second: Decimals(r.mrays_per_second()),
+            renderer_over_traversal: r.traversal_ratio().map(Decimals),
+        }
     }
-    text
+}
+
+/// The scaling CSV text (memory columns empty when not measured, the
+/// traversal ratio empty when the rays were not replayed).
+pub fn scaling_csv(rows: &[ScalingRow]) -> String {
+    csv_text(&SCALING_COLUMNS, rows.iter().map(ScalingRecord::from))
 }
 
 /// The procedural scene: a sphere of about `triangles` triangles on a floor, under a quad light.
@@ -403,4 +436,50 @@ pub fn measure_scaling(
         rows.push(scene_row(Axis::Threads, size, threads)?);
     }
     Ok(rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tools::bench::csv::field_names;
+
+    #[test]
+    fn scaling_rows_are_written_under_their_columns() {
+        let row = ScalingRow {
+            axis: Axis::GltfTriangles,
+            triangles: 2000,
+            width: 16,
+            height: 24,
+            threads: 2,
+            load_seconds: 0.25,
+            build_seconds: 0.125,
+            memory: Some(MemoryUse {
+                peak_bytes: 300_000,
+                retained_bytes: 100_000,
+            }),
+            spp: 4,
+            render_seconds: 0.5,
+            rays: 1_000_000,
+            traversal_seconds: Some(0.25),
+        };
+        let unmeasured = ScalingRow {
+            axis: Axis::Threads,
+            memory: None,
+            traversal_seconds: None,
+            ..row.clone()
+        };
+        let text = scaling_csv(&[row.clone(), unmeasured]);
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[0], SCALING_COLUMNS.join(","));
+        assert_eq!(
+            lines[1],
+            "gltf-triangles,2000,16,24,2,0.250000,0.125000,150.0,50.0,4,0.125000,2.000,0.500"
+        );
+        assert_eq!(
+            lines[2],
+            "threads,2000,16,24,2,0.250000,0.125000,,,4,0.125000,2.000,"
+        );
+        assert_eq!(lines.len(), 3);
+        assert_eq!(field_names(ScalingRecord::from(&row)), lines[0]);
+    }
 }

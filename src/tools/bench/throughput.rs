@@ -24,6 +24,7 @@
 use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
+use serde::Serialize;
 
 use crate::geometry::Ray;
 use crate::geometry::accel::{Accel, Query};
@@ -31,6 +32,8 @@ use crate::render::{Budget, render, sample_stream};
 use crate::transport::counts::RayCounts;
 use crate::transport::path_log::{PathLog, PathSegment, SegmentKind};
 use crate::{Film, RenderContext};
+
+use super::csv::{Decimals, csv_text};
 
 /// The kinds of rays the renderer traces, as counted by [`RayCounts`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -189,20 +192,32 @@ impl ThroughputRow {
     }
 }
 
+/// The header of the throughput CSV, in order.
+pub const THROUGHPUT_COLUMNS: [&str; 5] =
+    ["measure", "rays_of", "rays", "seconds", "mrays_per_second"];
+
+/// One line of the throughput CSV: a [`ThroughputRow`] and its rate.
+#[derive(Serialize)]
+struct ThroughputRecord<'a> {
+    measure: &'a str,
+    rays_of: &'a str,
+    rays: u64,
+    seconds: Decimals<6>,
+    mrays_per_second: Decimals<3>,
+}
+
 /// The throughput CSV text.
 pub fn throughput_csv(rows: &[ThroughputRow]) -> String {
-    let mut text = String::from("measure,rays_of,rays,seconds,mrays_per_second\n");
-    for r in rows {
-        text += &format!(
-            "{},{},{},{:.6},{:.3}\n",
-            r.measure,
-            r.rays_of,
-            r.rays,
-            r.seconds,
-            r.mrays_per_second()
-        );
-    }
-    text
+    csv_text(
+        &THROUGHPUT_COLUMNS,
+        rows.iter().map(|r| ThroughputRecord {
+            measure: &r.measure,
+            rays_of: &r.rays_of,
+            rays: r.rays,
+            seconds: Decimals(r.seconds),
+            mrays_per_second: Decimals(r.mrays_per_second()),
+        }),
+    )
 }
 
 /// The result of the throughput section.
@@ -299,5 +314,34 @@ pub fn measure(context: &RenderContext, passes: u32, repeats: u32) -> Throughput
         renderer_rays,
         ratio,
         bvh_ratio,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tools::bench::csv::field_names;
+
+    #[test]
+    fn throughput_rows_are_written_under_their_columns() {
+        let row = ThroughputRow {
+            measure: "renderer".into(),
+            rays_of: "all".into(),
+            rays: 3_000_000,
+            seconds: 1.5,
+        };
+        let text = throughput_csv(std::slice::from_ref(&row));
+        assert_eq!(
+            text,
+            "measure,rays_of,rays,seconds,mrays_per_second\nrenderer,all,3000000,1.500000,2.000\n"
+        );
+        let record = ThroughputRecord {
+            measure: "",
+            rays_of: "",
+            rays: 0,
+            seconds: Decimals(0.0),
+            mrays_per_second: Decimals(0.0),
+        };
+        assert_eq!(field_names(record), THROUGHPUT_COLUMNS.join(","));
     }
 }
