@@ -17,7 +17,8 @@ use lumiere::tools::bench::scaling::ScalingBench;
 use lumiere::tools::bench::{BenchError, Progress, Section};
 use lumiere::{Film, RenderSettings};
 
-use super::options::{IndirectSamples, SceneOptions};
+use super::options::SceneOptions;
+use super::parsers::IndirectSamples;
 use super::{Failure, check_settings, worker_pool};
 
 /// The arguments of `lumiere bench`.

@@ -9,8 +9,8 @@ use lumiere::render::settings::{
 use lumiere::{BrdfOverride, LightMode, RenderSettings, TermSet};
 
 use super::parsers::{
-    parse_adaptive_threshold, parse_exposure, parse_indirect_samples, parse_light_radius,
-    parse_phong_exponent,
+    IndirectSamples, parse_adaptive_threshold, parse_exposure, parse_indirect_samples,
+    parse_light_radius, parse_phong_exponent,
 };
 
 /// What decides the radiance and its display: shared by `render`, `view` and `strip`.
@@ -78,15 +78,6 @@ pub struct SceneOptions {
     /// Tonemap (PNG and display): none (clamp), reinhard or aces.
     #[arg(long, default_value = "none")]
     pub tonemap: Tonemap,
-}
-
-/// `--indirect-samples`: a count, or `auto`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum IndirectSamples {
-    /// This many continuations per first hit.
-    Count(u32),
-    /// The count a pilot render finds best.
-    Auto,
 }
 
 impl SceneOptions {

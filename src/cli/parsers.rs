@@ -6,8 +6,6 @@ use std::str::FromStr;
 
 use lumiere::render::settings::MAX_SAMPLES_PER_VERTEX;
 
-use super::options::IndirectSamples;
-
 /// Parses a finite number within `range`; `what` names the value (and its
 /// unit) in the messages, e.g. "exposure in stops must be within -64..=64, not 99".
 /// A number too large for `T` parses as infinite and is refused as not finite.
@@ -100,6 +98,15 @@ pub fn parse_seconds(s: &str) -> Result<f64, String> {
         (Bound::Excluded(0.0), Bound::Included(1e7)),
         "render time in seconds",
     )
+}
+
+/// `--indirect-samples`: a count, or `auto`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IndirectSamples {
+    /// This many continuations per first hit.
+    Count(u32),
+    /// The count a pilot render finds best.
+    Auto,
 }
 
 /// `--indirect-samples`: `auto` or a count within 1..=MAX_SAMPLES_PER_VERTEX.

@@ -7,8 +7,6 @@ use std::path::Path;
 use gltf::Document;
 use gltf::buffer::Data as BufferData;
 
-use super::meshes::check_scene_size;
-use super::nodes::{check_node_graph, scene_roots};
 use super::{GltfFile, Loaded, label};
 use crate::scene::Scene;
 
@@ -48,16 +46,16 @@ impl<'f> SceneBuilder<'f> {
         }
     }
 
+    /// The scene, once `load_bytes` has checked the node graph and the
+    /// scene's size.
     pub(super) fn build(mut self) -> Loaded<Scene> {
-        check_node_graph(self.document)?;
-        check_scene_size(self.document)?;
         let animations = self.document.animations().len();
         if animations > 0 {
             self.warn(format!(
                 "{animations} animation(s) ignored; the scene is loaded at rest"
             ));
         }
-        self.walk(scene_roots(self.document))?;
+        self.walk_scene()?;
         self.add_summary_warnings();
         self.scene.shrink_to_fit();
         Ok(self.scene)

@@ -88,6 +88,8 @@ pub fn load_slice(bytes: &[u8], name: &str, base_dir: Option<&Path>) -> Result<S
 fn load_bytes(bytes: &[u8], name: &str, base_dir: Option<&Path>) -> Loaded<Scene> {
     catch_panics(|| {
         let file = read_gltf(bytes, base_dir)?;
+        nodes::check_node_graph(&file.document)?;
+        meshes::check_scene_size(&file.document)?;
         SceneBuilder::new(&file, name, base_dir).build()
     })
 }

@@ -135,6 +135,11 @@ fn check_world_transform(world: &Affine3A) -> Loaded<()> {
 impl<'f> SceneBuilder<'f> {
     /// Depth-first, parents before children, children in file order; each
     /// node is reached once (`check_node_graph` refused cycles and shared children).
+    /// Walks the nodes of the document's scene from its roots.
+    pub(super) fn walk_scene(&mut self) -> Loaded<()> {
+        self.walk(scene_roots(self.document))
+    }
+
     pub(super) fn walk(&mut self, roots: Vec<gltf::Node<'f>>) -> Loaded<()> {
         let mut reached = vec![false; self.document.nodes().len()];
         let mut pending: Vec<(gltf::Node<'f>, Affine3A)> = roots
