@@ -130,3 +130,62 @@ pub fn estimate(context: &RenderContext, ray: Ray, term: Term, n: u64, seed: u64
     let variance = (sum2 / n as f64 - mean * mean).max(0.0);
     (mean, (variance / n as f64).sqrt())
 }
+
+/// A GLB container around `json` and an optional BIN chunk (both padded).
+pub fn glb(json: &str, bin: Option<&[u8]>) -> Vec<u8> {
+    let mut json = json.as_bytes().to_vec();
+    while !json.len().is_multiple_of(4) {
+        json.push(b' ');
+    }
+    let mut chunks = Vec::new();
+    chunks.extend((json.len() as u32).to_le_bytes());
+    chunks.extend(b"JSON");
+    chunks.extend(&json);
+    if let Some(bin) = bin {
+        let mut bin = bin.to_vec();
+        while !bin.len().is_multiple_of(4) {
+            bin.push(0);
+        }
+        chunks.extend((bin.len() as u32).to_le_bytes());
+        chunks.extend(b"BIN\0");
+        chunks.extend(&bin);
+    }
+    let mut file = b"glTF".to_vec();
+    file.extend(2u32.to_le_bytes());
+    file.extend((12 + chunks.len() as u32).to_le_bytes());
+    file.extend(chunks);
+    file
+}
+
+pub const GLB_JSON: &str = r#"{"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],
+"bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36}]}"#;
+
+pub fn triangle_bin() -> Vec<u8> {
+    [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect()
+}
+
+/// A handwritten glTF file of `tests/data/gltf`.
+pub fn data_path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/gltf")
+        .join(name)
+}
+
+/// The text of a handwritten glTF file.
+pub fn read_data(name: &str) -> String {
+    std::fs::read_to_string(data_path(name)).unwrap()
+}
+
+/// Two positions equal within 10⁻⁵.
+#[track_caller]
+pub fn assert_close(actual: Vec3, expected: Vec3) {
+    assert!(
+        (actual - expected).length() < 1e-5,
+        "{actual} is not {expected}"
+    );
+}
