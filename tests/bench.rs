@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Arc;
 
+use lumiere::render::settings::Choice;
 use lumiere::render::settings::{LightSampling, Sampler};
 use lumiere::render::{Budget, render};
 use lumiere::scene::{builtin, gltf};
@@ -43,7 +44,7 @@ fn tiny_config() -> BenchConfig {
         ..tiny_settings()
     };
     BenchConfig {
-        sections: Section::ALL.to_vec(),
+        sections: Section::all(),
         error: ErrorBench {
             scene: "cornell".into(),
             settings: settings.clone(),
@@ -398,7 +399,12 @@ fn a_malformed_peer_csv_fails_the_command_with_its_name() {
         .output()
         .unwrap();
     assert_eq!(bad_section.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&bad_section.stderr).contains("unknown bench section 'speed'"));
+    let message = String::from_utf8_lossy(&bad_section.stderr);
+    assert!(
+        message.contains("'--only <ONLY>': unknown value 'speed'")
+            && message.contains("error, throughput, scaling"),
+        "{message}"
+    );
     // curves extended past their reference would measure the reference's own noise
     let past_reference = Command::new(env!("CARGO_BIN_EXE_lumiere"))
         .args(["bench", "--only", "error", "--reference-spp", "64"])

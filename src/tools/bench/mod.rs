@@ -27,50 +27,19 @@ pub mod run;
 pub mod scaling;
 pub mod throughput;
 
+use strum::{Display, EnumIter, EnumString, IntoStaticStr};
+
+use crate::render::settings::unknown_choice;
 use std::fmt;
 use std::path::PathBuf;
-use std::str::FromStr;
 
 /// The parts of a bench, selectable with `--only`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, EnumIter, IntoStaticStr, EnumString, Display)]
+#[strum(serialize_all = "kebab-case", ascii_case_insensitive, parse_err_ty = String, parse_err_fn = unknown_choice::<Section>)]
 pub enum Section {
     Error,
     Throughput,
     Scaling,
-}
-
-impl Section {
-    pub const ALL: [Section; 3] = [Section::Error, Section::Throughput, Section::Scaling];
-
-    pub fn label(self) -> &'static str {
-        match self {
-            Section::Error => "error",
-            Section::Throughput => "throughput",
-            Section::Scaling => "scaling",
-        }
-    }
-}
-
-impl FromStr for Section {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        Self::ALL
-            .into_iter()
-            .find(|v| v.label().eq_ignore_ascii_case(s.trim()))
-            .ok_or_else(|| {
-                let names: Vec<&str> = Self::ALL.iter().map(|v| v.label()).collect();
-                format!(
-                    "unknown bench section '{s}' (expected one of: {})",
-                    names.join(", ")
-                )
-            })
-    }
-}
-
-impl fmt::Display for Section {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.label())
-    }
 }
 
 /// A bench that could not run: names the file or the option at fault.

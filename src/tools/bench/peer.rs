@@ -12,10 +12,11 @@
 //! missing interpreter, script or package skips the peer with a message; it
 //! never fails the bench.
 
-use std::fmt;
+use strum::{Display, EnumIter, EnumString, IntoStaticStr};
+
+use crate::render::settings::unknown_choice;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::str::FromStr;
 
 use crate::render::settings::Choice;
 use crate::render::settings::{BrdfOverride, LightMode, RenderSettings, Term};
@@ -27,41 +28,18 @@ use super::error_curve::{ErrorBench, lowest_threshold};
 use super::{BenchError, Progress};
 
 /// Renderers lumiere can run for comparison.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, EnumIter, IntoStaticStr, EnumString, Display)]
+#[strum(serialize_all = "kebab-case", ascii_case_insensitive, parse_err_ty = String, parse_err_fn = unknown_choice::<Peer>)]
 pub enum Peer {
     Mitsuba,
 }
 
 impl Peer {
-    pub const ALL: [Peer; 1] = [Peer::Mitsuba];
-
-    pub fn label(self) -> &'static str {
-        match self {
-            Peer::Mitsuba => "mitsuba",
-        }
-    }
-
     /// The script, relative to the repository root.
     pub fn script(self) -> &'static str {
         match self {
             Peer::Mitsuba => "tests/reference/mitsuba_bench.py",
         }
-    }
-}
-
-impl FromStr for Peer {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        Self::ALL
-            .into_iter()
-            .find(|p| p.label().eq_ignore_ascii_case(s.trim()))
-            .ok_or_else(|| format!("unknown peer renderer '{s}' (expected: mitsuba)"))
-    }
-}
-
-impl fmt::Display for Peer {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.label())
     }
 }
 
