@@ -228,32 +228,6 @@ fn mutate(original: &[u8], is_glb: bool, rng: &mut Rng) -> Vec<u8> {
 // ---------------------------------------------------------------------------
 // Inputs
 
-/// A GLB container around `json` and an optional BIN chunk (both padded).
-fn glb(json: &[u8], bin: Option<&[u8]>) -> Vec<u8> {
-    let mut json = json.to_vec();
-    while !json.len().is_multiple_of(4) {
-        json.push(b' ');
-    }
-    let mut chunks = Vec::new();
-    chunks.extend((json.len() as u32).to_le_bytes());
-    chunks.extend(b"JSON");
-    chunks.extend(&json);
-    if let Some(bin) = bin {
-        let mut bin = bin.to_vec();
-        while !bin.len().is_multiple_of(4) {
-            bin.push(0);
-        }
-        chunks.extend((bin.len() as u32).to_le_bytes());
-        chunks.extend(b"BIN\0");
-        chunks.extend(&bin);
-    }
-    let mut file = b"glTF".to_vec();
-    file.extend(2u32.to_le_bytes());
-    file.extend((12 + chunks.len() as u32).to_le_bytes());
-    file.extend(chunks);
-    file
-}
-
 /// An indexed triangle with normals in a GLB's BIN chunk.
 fn triangle_glb() -> Vec<u8> {
     let json = br#"{"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0,"rotation":[0,0,0,1]}],
@@ -270,7 +244,7 @@ fn triangle_glb() -> Vec<u8> {
     .flat_map(|v| v.to_le_bytes())
     .collect();
     bin.extend([0u16, 1, 2].iter().flat_map(|i| i.to_le_bytes()));
-    glb(json, Some(&bin))
+    common::glb(json, Some(&bin))
 }
 
 /// (name, bytes) of every input: the valid corpus, the Cornell box, and GLB containers.
@@ -283,7 +257,7 @@ fn inputs() -> Vec<(String, Vec<u8>)> {
     let cornell =
         std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/cornell-box.gltf"))
             .unwrap();
-    inputs.push(("cornell-box.glb".into(), glb(&cornell, None)));
+    inputs.push(("cornell-box.glb".into(), common::glb(&cornell, None)));
     inputs.push(("cornell-box.gltf".into(), cornell));
     inputs.push(("triangle.glb".into(), triangle_glb()));
     inputs

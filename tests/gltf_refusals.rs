@@ -155,7 +155,7 @@ fn with_node_trs(trs: &str) -> String {
 #[test]
 fn non_unit_rotation_is_normalised_with_a_warning() {
     let bytes = glb(
-        &with_node_trs("\"rotation\":[0,0,0,2]"),
+        with_node_trs("\"rotation\":[0,0,0,2]"),
         Some(&triangle_bin()),
     );
     let scene = load_slice(&bytes, "rotation.glb", None).unwrap();
@@ -220,7 +220,7 @@ fn spot_cone_angles_are_checked() {
             "{{\"name\":\"S\",\"type\":\"spot\",\"intensity\":1,\"spot\":{{\"innerConeAngle\":{inner},\"outerConeAngle\":{outer}}}}}"
         ))
     };
-    let bytes = glb(&spot(0.2, 0.5), Some(&triangle_bin()));
+    let bytes = glb(spot(0.2, 0.5), Some(&triangle_bin()));
     let scene = load_slice(&bytes, "spot.glb", None).unwrap();
     assert!(matches!(
         scene.lights[0].kind,
@@ -239,7 +239,7 @@ fn spot_cone_angles_are_checked() {
         "{error}"
     );
 
-    let bytes = glb(&spot(0.5, 0.5), Some(&triangle_bin()));
+    let bytes = glb(spot(0.5, 0.5), Some(&triangle_bin()));
     let scene = load_slice(&bytes, "spot.glb", None).unwrap();
     assert!(
         scene
@@ -314,7 +314,7 @@ fn image_header_claiming_more_texels_than_its_data_is_refused() {
     let mut bin = triangle_bin();
     bin.extend(&honest);
     let scene = load_slice(
-        &glb(&textured_json(honest.len()), Some(&bin)),
+        &glb(textured_json(honest.len()), Some(&bin)),
         "png.glb",
         None,
     )
@@ -391,7 +391,7 @@ fn sparse_indices_beyond_the_count_or_unordered_are_refused() {
         );
         bin
     };
-    let scene = load_slice(&glb(&sparse(1), Some(&bin([1, 0]))), "sparse.glb", None)
+    let scene = load_slice(&glb(sparse(1), Some(&bin([1, 0]))), "sparse.glb", None)
         .unwrap_or_else(|e| panic!("{e}"));
     assert_close(scene.positions[1], Vec3::new(0.0, 4.0, 0.0));
 

@@ -132,8 +132,8 @@ pub fn estimate(context: &RenderContext, ray: Ray, term: Term, n: u64, seed: u64
 }
 
 /// A GLB container around `json` and an optional BIN chunk (both padded).
-pub fn glb(json: &str, bin: Option<&[u8]>) -> Vec<u8> {
-    let mut json = json.as_bytes().to_vec();
+pub fn glb(json: impl AsRef<[u8]>, bin: Option<&[u8]>) -> Vec<u8> {
+    let mut json = json.as_ref().to_vec();
     while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
