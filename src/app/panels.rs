@@ -3,6 +3,7 @@
 //! then tells the worker what changed.
 
 use eframe::egui;
+use strum::IntoEnumIterator;
 
 use super::noise_view::{self, LEGEND_HEIGHT};
 use super::probe_view::{self, ImageMapping};
@@ -242,7 +243,7 @@ fn materials_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             egui::ComboBox::from_label("BRDF")
                 .selected_text(brdf_text(settings.brdf))
                 .show_ui(ui, |ui| {
-                    for brdf in BrdfOverride::all() {
+                    for brdf in BrdfOverride::iter() {
                         ui.selectable_value(&mut settings.brdf, brdf, brdf_text(brdf));
                     }
                 });
@@ -262,23 +263,11 @@ fn sampling_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
         .default_open(true)
         .show(ui, |ui| {
             let settings = &mut app.state.settings;
-            combo(
-                ui,
-                "integrator",
-                &mut settings.integrator,
-                &Integrator::all(),
-                integrator_hint,
-            );
+            combo(ui, "integrator", &mut settings.integrator, integrator_hint);
             // the strategies below are the fast integrator's
             let fast = settings.integrator == Integrator::Fast;
             ui.add_enabled_ui(fast, |ui| strategies_ui(ui, settings));
-            combo(
-                ui,
-                "sampler",
-                &mut settings.sampler,
-                &Sampler::all(),
-                sampler_hint,
-            );
+            combo(ui, "sampler", &mut settings.sampler, sampler_hint);
             adaptive_ui(ui, &mut settings.adaptive);
         });
 }
@@ -290,13 +279,12 @@ fn strategies_ui(ui: &mut egui::Ui, settings: &mut RenderSettings) {
         ui,
         "direct (L1)",
         &mut settings.light_sampling,
-        &LightSampling::all(),
         light_sampling_hint,
     );
     ui.add_enabled_ui(settings.light_sampling == LightSampling::Mis, |ui| {
         ui.horizontal(|ui| {
             ui.label("MIS weights");
-            for heuristic in MisHeuristic::all() {
+            for heuristic in MisHeuristic::iter() {
                 ui.radio_value(&mut settings.mis_heuristic, heuristic, heuristic.label())
                     .on_hover_text(match heuristic {
                         MisHeuristic::Balance => "w = p_light / (p_light + p_brdf)",
@@ -309,7 +297,6 @@ fn strategies_ui(ui: &mut egui::Ui, settings: &mut RenderSettings) {
         ui,
         "indirect (L2, L3+)",
         &mut settings.indirect_sampling,
-        &IndirectSampling::all(),
         indirect_sampling_hint,
     );
     ui.horizontal(|ui| {
@@ -337,7 +324,7 @@ fn strategies_ui(ui: &mut egui::Ui, settings: &mut RenderSettings) {
     });
     ui.horizontal(|ui| {
         ui.label("pick lights");
-        for selection in LightSelection::all() {
+        for selection in LightSelection::iter() {
             ui.radio_value(&mut settings.light_selection, selection, selection.label())
                 .on_hover_text(match selection {
                     LightSelection::Uniform => "Every light with the same probability",
@@ -398,18 +385,17 @@ fn adaptive_ui(ui: &mut egui::Ui, adaptive: &mut Option<Adaptive>) {
 }
 
 /// A combo box over a closed set, with a hint per value.
-fn combo<T: Copy + PartialEq + std::fmt::Display>(
+fn combo<T: Choice + PartialEq>(
     ui: &mut egui::Ui,
     label: &str,
     value: &mut T,
-    all: &[T],
     hint: fn(T) -> &'static str,
 ) {
     egui::ComboBox::from_label(label)
-        .selected_text(value.to_string())
+        .selected_text(value.label())
         .show_ui(ui, |ui| {
-            for &v in all {
-                ui.selectable_value(value, v, v.to_string())
+            for v in T::iter() {
+                ui.selectable_value(value, v, v.label())
                     .on_hover_text(hint(v));
             }
         })
@@ -523,7 +509,7 @@ fn display_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             egui::ComboBox::from_label("tonemap")
                 .selected_text(display.tonemap.label())
                 .show_ui(ui, |ui| {
-                    for tonemap in Tonemap::all() {
+                    for tonemap in Tonemap::iter() {
                         ui.selectable_value(&mut display.tonemap, tonemap, tonemap.label());
                     }
                 });

@@ -16,7 +16,7 @@ use super::LumiereApp;
 use crate::analysis::convergence::EstimatorKey;
 use crate::render::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
 use crate::render::settings::Choice;
-use crate::render::settings::{IndirectSampling, LightSampling, MAX_SAMPLES_PER_VERTEX, Sampler};
+use crate::render::settings::{LightSampling, MAX_SAMPLES_PER_VERTEX};
 
 /// Composed images count their generations from here, away from the workers'.
 const COMPOSITE_GENERATION: u64 = 1 << 62;
@@ -320,9 +320,9 @@ pub fn compare_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 return;
             }
             let b = &mut app.compare.estimator;
-            combo(ui, "B light sampling", &mut b.light_sampling, &LightSampling::all(), LightSampling::label);
-            combo(ui, "B indirect sampling", &mut b.indirect_sampling, &IndirectSampling::all(), IndirectSampling::label);
-            combo(ui, "B sampler", &mut b.sampler, &Sampler::all(), Sampler::label);
+            combo(ui, "B light sampling", &mut b.light_sampling);
+            combo(ui, "B indirect sampling", &mut b.indirect_sampling);
+            combo(ui, "B sampler", &mut b.sampler);
             ui.horizontal(|ui| {
                 ui.add(
                     egui::DragValue::new(&mut b.light_samples)
@@ -346,18 +346,12 @@ pub fn compare_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
         });
 }
 
-fn combo<T: Copy + PartialEq>(
-    ui: &mut egui::Ui,
-    label: &str,
-    value: &mut T,
-    all: &[T],
-    name: fn(T) -> &'static str,
-) {
+fn combo<T: Choice + PartialEq>(ui: &mut egui::Ui, label: &str, value: &mut T) {
     egui::ComboBox::from_label(label)
-        .selected_text(name(*value))
+        .selected_text(value.label())
         .show_ui(ui, |ui| {
-            for &choice in all {
-                ui.selectable_value(value, choice, name(choice));
+            for choice in T::iter() {
+                ui.selectable_value(value, choice, choice.label());
             }
         });
 }

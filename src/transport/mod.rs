@@ -80,11 +80,29 @@ impl RenderContext {
     ) -> TermRadiance {
         let ray = self.camera.generate(x, y, stream.uniform2(dim::PIXEL));
         let terms = terms.intersection(self.settings.terms);
-        let radiance = match self.settings.integrator {
-            Integrator::Fast => {
-                let splits = self.continuations.at(x, y);
-                fast::radiance(self, ray, stream, terms, splits, counts)
-            }
+        let radiance = self.integrate(ray, stream, terms, self.continuations.at(x, y), counts);
+        guard_sample(radiance, counts)
+    }
+
+    /// Radiance arriving along `ray` (unit direction), per term, with the
+    /// continuations of the whole image; unguarded.
+    pub fn trace(&self, ray: Ray, stream: &SampleStream, counts: &mut RayCounts) -> TermRadiance {
+        let (terms, splits) = (self.settings.terms, self.continuations.count);
+        self.integrate(ray, stream, terms, splits, counts)
+    }
+
+    /// The chosen integrator's radiance along `ray` for `terms`, with
+    /// `splits` continuations at the first hit (the fast one's); unguarded.
+    fn integrate(
+        &self,
+        ray: Ray,
+        stream: &SampleStream,
+        terms: TermSet,
+        splits: u32,
+        counts: &mut RayCounts,
+    ) -> TermRadiance {
+        match self.settings.integrator {
+            Integrator::Fast => fast::radiance(self, ray, stream, terms, splits, counts),
             Integrator::Lecture => {
                 // the lecture integrator counts nothing itself: its samples
                 // are counted here, as camera rays (adaptive sampling and the
@@ -92,19 +110,6 @@ impl RenderContext {
                 counts.camera += 1;
                 lecture::radiance(self, &ray, stream, terms)
             }
-        };
-        guard_sample(radiance, counts)
-    }
-
-    /// Radiance arriving along `ray` (unit direction), per term, with the
-    /// continuations of the whole image; unguarded.
-    pub fn trace(&self, ray: Ray, stream: &SampleStream, counts: &mut RayCounts) -> TermRadiance {
-        let terms = self.settings.terms;
-        match self.settings.integrator {
-            Integrator::Fast => {
-                fast::radiance(self, ray, stream, terms, self.continuations.count, counts)
-            }
-            Integrator::Lecture => lecture::radiance(self, &ray, stream, terms),
         }
     }
 }
