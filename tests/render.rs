@@ -30,8 +30,11 @@ fn terms_rendered_apart_add_up_to_the_combined_render() {
             .zip(&summed)
             .map(|(t, s)| (*t - *s).abs().max_element() / t.max_element().max(1e-3))
             .fold(0.0f32, f32::max);
+        // the film sums a pixel's term means in f64 and rounds once to f32;
+        // the test rounds each term to f32 and adds them in f32: at most 2.5
+        // roundings of half an ulp apart, relative to the largest channel
         assert!(
-            worst < 1e-5,
+            worst <= 3.0 * f32::EPSILON,
             "{mode}: separate terms differ from the combined render by {worst}"
         );
         assert!(together.iter().any(|p| p.max_element() > 0.0));
@@ -71,6 +74,21 @@ fn lumiere() -> Command {
     Command::new(env!("CARGO_BIN_EXE_lumiere"))
 }
 
+/// The samples the render's guard dropped (NaN, infinite or negative
+/// radiance), read from the summary line "… N invalid samples dropped".
+fn invalid_samples(output: &std::process::Output) -> u64 {
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let before = stdout
+        .split(" invalid samples dropped")
+        .next()
+        .filter(|b| b.len() < stdout.len())
+        .unwrap_or_else(|| panic!("no invalid sample count in the summary: {stdout}"));
+    let count = before.rsplit(' ').next().unwrap_or_default();
+    count
+        .parse()
+        .unwrap_or_else(|_| panic!("not a count: {count:?} in {stdout}"))
+}
+
 fn temp_path(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("lumiere-tests-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -98,6 +116,7 @@ fn cli_renders_png_and_exr_and_prints_a_summary() {
         summary.contains("2 spp") && summary.contains("Mrays/s"),
         "summary: {summary}"
     );
+    assert_eq!(invalid_samples(&out), 0);
     let image = image::open(&png).unwrap();
     assert_eq!((image.width(), image.height()), (32, 24));
 
@@ -115,13 +134,10 @@ fn cli_renders_png_and_exr_and_prints_a_summary() {
         "stderr: {}",
         String::from_utf8_lossy(&out.stderr)
     );
+    assert_eq!(invalid_samples(&out), 0);
     let (w, h, pixels) = lumiere::render::export::load_exr(&exr).unwrap();
     assert_eq!((w, h), (16, 16));
-    assert!(
-        pixels
-            .iter()
-            .all(|p| p.is_finite() && p.min_element() >= 0.0)
-    );
+    assert!(pixels.iter().any(|p| p.max_element() > 0.0));
 }
 
 #[test]
@@ -177,22 +193,17 @@ fn cli_reports_an_unloadable_scene_with_code_1() {
     }
 }
 
-/// Every valid corpus file renders to finite, non-negative radiance; every
+/// Every valid corpus file renders without invalid samples; every
 /// invalid one makes the command line exit with 1 and a message naming it.
 #[test]
 fn corpus_files_render_or_fail_cleanly() {
     let corpus = common::corpus_dir();
     for path in common::gltf_files(&corpus.join("valid")) {
         let scene = lumiere::scene::gltf::load(&path).unwrap_or_else(|e| panic!("{e}"));
-        let film = render_film(scene, &small(16, 12, TermSet::ALL), 2);
-        let radiance = film.radiance(TermSet::ALL);
-        assert!(
-            radiance
-                .iter()
-                .all(|p| p.is_finite() && p.min_element() >= 0.0),
-            "{}: non-finite or negative radiance",
-            path.display()
-        );
+        // `render_film` asserts that the film's guard dropped no sample
+        // (most corpus files have no light: their images are black)
+        eprintln!("rendering {}", path.display());
+        render_film(scene, &small(16, 12, TermSet::ALL), 2);
     }
     let out = temp_path("corpus.png");
     for path in common::gltf_files(&corpus.join("invalid")) {
@@ -259,6 +270,7 @@ fn cli_render_reproduces_a_sidecar() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert!(String::from_utf8_lossy(&out.stdout).starts_with("3 spp"));
+    assert_eq!(invalid_samples(&out), 0);
 
     let mut context = lumiere::RenderContext::new(scene, settings.clone());
     context.set_camera(&camera);

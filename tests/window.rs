@@ -8,6 +8,7 @@
 //! which makes that a failure.
 #![cfg(feature = "gui")]
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
@@ -108,7 +109,12 @@ fn viewer_screenshot_matches_the_command_line_render() {
             std::env::var("LUMIERE_REQUIRE_DISPLAY").is_err(),
             "no DISPLAY and no Xvfb: install xvfb (see .ci/run)"
         );
-        eprintln!("skipped: no DISPLAY and no Xvfb on the PATH");
+        // straight to the process's stderr, past the test harness's capture,
+        // so that the skip shows in `cargo test`'s output
+        let _ = writeln!(
+            std::io::stderr(),
+            "\nwindow test SKIPPED: no DISPLAY and no Xvfb on the PATH (install xvfb, see the README)"
+        );
         return;
     };
     let settings = [

@@ -27,12 +27,25 @@ pub fn render_film(scene: Scene, settings: &RenderSettings, spp: u32) -> Film {
     render_with_stats(scene, settings, spp).0
 }
 
-/// [`render_film`], with what the render did.
+/// [`render_film`], with what the render did. Every render must be free of
+/// invalid samples: the film's guard zeroes a NaN, infinite or negative
+/// sample before it reaches the film, so only its count can show one.
 pub fn render_with_stats(scene: Scene, settings: &RenderSettings, spp: u32) -> (Film, RenderStats) {
     let context = RenderContext::new(scene, settings.clone());
     let mut film = Film::new(settings.width, settings.height);
     let stats = render(&context, &mut film, Budget::Samples(spp), |_| {});
+    assert_no_invalid_samples(&stats.rays);
     (film, stats)
+}
+
+/// Asserts the guard dropped no sample (NaN, infinite or negative radiance).
+#[track_caller]
+pub fn assert_no_invalid_samples(counts: &RayCounts) {
+    assert_eq!(
+        counts.invalid_samples, 0,
+        "{} samples had NaN, infinite or negative radiance",
+        counts.invalid_samples
+    );
 }
 
 /// Settings of a small image with only `terms`.
@@ -122,7 +135,15 @@ pub fn estimate(context: &RenderContext, ray: Ray, term: Term, n: u64, seed: u64
     let mut counts = RayCounts::default();
     for i in 0..n {
         let stream = SampleStream::new(seed, 0, i);
-        let value = context.trace(ray, &stream, &mut counts)[term.index()].x as f64;
+        // `trace` is unguarded: a NaN or a negative value reaches the test
+        let radiance = context.trace(ray, &stream, &mut counts);
+        assert!(
+            radiance
+                .iter()
+                .all(|l| l.is_finite() && l.min_element() >= 0.0),
+            "sample {i} of seed {seed}: {radiance:?}"
+        );
+        let value = radiance[term.index()].x as f64;
         sum += value;
         sum2 += value * value;
     }
