@@ -32,7 +32,7 @@ use lumiere::transport::warps::{
 };
 use lumiere::{RenderSettings, Term, TermSet};
 
-use common::{render_film, small};
+use common::{paired_difference, pixel_errors, render_film, small};
 
 // ── χ² machinery ────────────────────────────────────────────────────────
 
@@ -815,25 +815,12 @@ fn direct_lighting_image(sampler: Sampler, spp: u32) -> Vec<Vec3> {
     render_film(builtin::cornell(), &settings, spp).radiance(settings.terms)
 }
 
-/// Each pixel's squared error against `reference`, summed over the channels.
+/// Each pixel's squared error against `reference`.
 fn squared_errors(image: &[Vec3], reference: &[Vec3]) -> Vec<f64> {
-    image
+    pixel_errors(image, reference)
         .iter()
-        .zip(reference)
-        .map(|(p, r)| (*p - *r).as_dvec3().length_squared())
+        .map(|e| e.rmse * e.rmse)
         .collect()
-}
-
-/// Mean and standard error of the per-pixel differences `better` − `worse`
-/// of squared errors. Pixels are independent, and the reference's own
-/// noise adds the same expected amount to both, so the mean estimates
-/// MSE(better) − MSE(worse).
-fn paired_difference(better: &[f64], worse: &[f64]) -> (f64, f64) {
-    let n = better.len() as f64;
-    let differences: Vec<f64> = better.iter().zip(worse).map(|(b, w)| b - w).collect();
-    let mean = differences.iter().sum::<f64>() / n;
-    let variance = differences.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    (mean, (variance / n).sqrt())
 }
 
 /// The Cornell box's direct lighting (area light, penumbrae, pixel edges) at

@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
+use lumiere::analysis::metrics::{ImageError, image_error};
 use lumiere::geometry::Ray;
 use lumiere::render::{Budget, RenderStats, render};
 use lumiere::transport::counts::RayCounts;
@@ -70,6 +71,30 @@ pub fn mean_and_error(film: &Film, term: Term) -> (f64, f64) {
         .map(|i| buffer.standard_error(i).powi(2))
         .sum::<f64>();
     (mean, variance.sqrt() / n)
+}
+
+/// Each pixel's error against `reference`, measured as `image_error`
+/// measures a whole image (squared and relative squared, over the channels).
+pub fn pixel_errors(image: &[Vec3], reference: &[Vec3]) -> Vec<ImageError> {
+    assert_eq!(image.len(), reference.len());
+    image
+        .iter()
+        .zip(reference)
+        .map(|(p, r)| image_error(&[*p], &[*r]).expect("one pixel each"))
+        .collect()
+}
+
+/// Mean and standard error of the per-pixel differences `a` − `b`. Pixels
+/// are independent, and a reference's own noise adds the same expected
+/// amount to two images' errors against it, so for squared errors the mean
+/// estimates MSE(a) − MSE(b).
+pub fn paired_difference(a: &[f64], b: &[f64]) -> (f64, f64) {
+    assert_eq!(a.len(), b.len());
+    let n = a.len() as f64;
+    let differences: Vec<f64> = a.iter().zip(b).map(|(a, b)| a - b).collect();
+    let mean = differences.iter().sum::<f64>() / n;
+    let variance = differences.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (mean, (variance / n).sqrt())
 }
 
 /// Asserts `measured` agrees with `expected` within `z` standard errors plus
