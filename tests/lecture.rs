@@ -12,31 +12,53 @@ use std::path::Path;
 
 use glam::Vec3;
 use lumiere::render::settings::Choice;
-use lumiere::render::settings::{Integrator, LightSampling, Sampler};
+use lumiere::render::settings::{Adaptive, Integrator, LightSampling, Sampler};
+use lumiere::render::{Budget, render};
 use lumiere::scene::builtin;
 use lumiere::scene::{Material, PunctualKind, PunctualLight};
-use lumiere::{BrdfOverride, LightMode, RenderSettings, Scene, Term, TermSet};
+use lumiere::transport::continuations::{Continuations, SplitMap};
+use lumiere::transport::splitting::choose_continuations;
+use lumiere::{BrdfOverride, Film, LightMode, RenderContext, RenderSettings, Scene, Term, TermSet};
 
-use common::{add_floor, mean_and_error, render_film};
+use common::{add_floor, assert_no_invalid_samples, mean_and_error, render_film};
 
-/// Two estimates of one mean disagree beyond chance past this |z|; over the
-/// few hundred comparisons here, a correct pair exceeds it with probability
-/// below 10⁻³.
+/// Two estimates of one mean disagree beyond chance past this |z|: a
+/// correct pair does with probability 6.8·10⁻⁶, so over the 250 or so
+/// comparisons here about 2·10⁻³ (with fixed seeds: once and for all).
 const Z_LIMIT: f64 = 4.5;
 
 /// The image means of every term under both integrators, compared.
 fn assert_integrators_agree(what: &str, scene: &Scene, settings: &RenderSettings, spp: u32) {
-    let render = |integrator, seed| {
+    assert_fast_agrees_with_lecture(what, scene, settings, settings, spp, |_| {});
+}
+
+/// The image means of every term, rendered by the fast integrator with
+/// `fast` (its context then set up by `prepare`) and by the lecture
+/// integrator with `lecture`, compared.
+fn assert_fast_agrees_with_lecture(
+    what: &str,
+    scene: &Scene,
+    fast: &RenderSettings,
+    lecture: &RenderSettings,
+    spp: u32,
+    prepare: impl Fn(&mut RenderContext),
+) {
+    let render_with = |settings: &RenderSettings, integrator, seed| {
         let settings = RenderSettings {
             integrator,
             seed: seed + settings.seed,
             terms: TermSet::ALL,
             ..settings.clone()
         };
-        render_film(scene.clone(), &settings, spp)
+        let mut context = RenderContext::new(scene.clone(), settings.clone());
+        prepare(&mut context);
+        let mut film = Film::new(settings.width, settings.height);
+        let stats = render(&context, &mut film, Budget::Samples(spp), |_| {});
+        assert_no_invalid_samples(&stats.rays);
+        film
     };
-    let fast = render(Integrator::Fast, 11);
-    let lecture = render(Integrator::Lecture, 12);
+    let fast = render_with(fast, Integrator::Fast, 11);
+    let lecture = render_with(lecture, Integrator::Lecture, 12);
     for term in Term::ALL {
         let (fast_mean, fast_error) = mean_and_error(&fast, term);
         let (lecture_mean, lecture_error) = mean_and_error(&lecture, term);
@@ -223,6 +245,55 @@ fn the_fast_integrators_strategies_agree_with_the_lecture() {
         let what = format!("cornell-glossy, light sampling {light_sampling}");
         assert_integrators_agree(&what, &scene, &settings, 1024);
     }
+}
+
+/// The fast integrator's sampling options whose own tests check only
+/// convergence to lumiere's renders keep the lecture's means too: the
+/// stratified sampler, adaptive sampling (a pixel stops on its own error
+/// estimate), a map of continuation counts (1 and 8 in a checkerboard of
+/// regions) and the pilot's automatic choice of counts.
+#[test]
+fn the_fast_integrators_sampling_options_agree_with_the_lecture() {
+    let scene = builtin::cornell();
+    let base = settings(24, 18);
+    let stratified = RenderSettings {
+        sampler: Sampler::Stratified,
+        ..base.clone()
+    };
+    assert_integrators_agree("cornell, stratified", &scene, &stratified, 1024);
+    let adaptive = RenderSettings {
+        adaptive: Some(Adaptive {
+            threshold: 0.02,
+            min_samples: 64,
+        }),
+        ..base.clone()
+    };
+    assert_fast_agrees_with_lecture("cornell, adaptive", &scene, &adaptive, &base, 1024, |_| {});
+    let map = SplitMap {
+        width: 24,
+        height: 18,
+        columns: 4,
+        rows: 3,
+        counts: (0..12)
+            .map(|i| if (i + i / 4) % 2 == 0 { 8 } else { 1 })
+            .collect(),
+    };
+    let split = |context: &mut RenderContext| {
+        if context.settings.integrator == Integrator::Fast {
+            context.continuations = Continuations {
+                count: 1,
+                map: Some(std::sync::Arc::new(map.clone())),
+            };
+        }
+    };
+    assert_fast_agrees_with_lecture("cornell, map ×1/×8", &scene, &base, &base, 512, split);
+    let auto = RenderSettings {
+        auto_indirect_samples: true,
+        ..base.clone()
+    };
+    assert_fast_agrees_with_lecture("cornell, auto", &scene, &auto, &base, 512, |context| {
+        choose_continuations(context)
+    });
 }
 
 /// A z-test that cannot fail proves nothing: the fast integrator's L1 is
