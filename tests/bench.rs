@@ -3,6 +3,8 @@
 //! writer, and the throughput replay tracing exactly the renderer's rays.
 //! Nothing here is timed.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Arc;
@@ -486,6 +488,7 @@ fn the_replay_traces_the_renderers_rays_and_finds_the_same_hits() {
         let context = RenderContext::new(Arc::new(builtin::cornell()), settings);
         let mut film = Film::new(16, 12);
         let stats = render(&context, &mut film, Budget::Samples(2), |_| {});
+        common::assert_no_invalid_samples(&stats.rays);
         let segments = record_segments(&context, 2);
         let count = |kind: RayKind| {
             segments

@@ -94,7 +94,8 @@ fn rmse_falls_with_slope_minus_one_half() {
     let mut points = Vec::new();
     let mut spp = 0;
     for target in [4u32, 16, 64, 256] {
-        render(&context, &mut film, Budget::Samples(target - spp), |_| {});
+        let stats = render(&context, &mut film, Budget::Samples(target - spp), |_| {});
+        common::assert_no_invalid_samples(&stats.rays);
         spp = target;
         let error = image_error(&film.radiance(settings.terms), &reference.radiance).unwrap();
         points.push((spp as f64, error.rmse));

@@ -1,5 +1,7 @@
 //! The path view: camera projection, and the recorded rays of a probed sample.
 
+mod common;
+
 use glam::{Affine3A, Vec2, Vec3};
 use lumiere::analysis::path_view::{RayRole, path_lines};
 use lumiere::analysis::probe::{MAX_PROBE_SAMPLES, probe_pixel};
@@ -97,7 +99,8 @@ fn cornell_film(spp: u32) -> (RenderContext, Film) {
     let mut film = Film::new(32, 24);
     let mut buffer = PassBuffer::default();
     for pass in 0..spp {
-        render_pass(&context, &mut film, pass, &mut buffer);
+        let counts = render_pass(&context, &mut film, pass, &mut buffer);
+        common::assert_no_invalid_samples(&counts);
     }
     (context, film)
 }

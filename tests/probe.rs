@@ -1,6 +1,8 @@
 //! The pixel probe traces again exactly the samples the film summed: same
 //! streams, same pass indices, even when a term skipped passes.
 
+mod common;
+
 use lumiere::analysis::probe::{MAX_PROBE_SAMPLES, probe_pixel};
 use lumiere::render::{PassBuffer, render_pass};
 use lumiere::scene::builtin;
@@ -24,7 +26,8 @@ fn probe_reproduces_the_film_mean_and_error_after_a_term_was_hidden() {
         } else {
             TermSet::ALL
         };
-        render_pass(&context, &mut film, pass, &mut buffer);
+        let counts = render_pass(&context, &mut film, pass, &mut buffer);
+        common::assert_no_invalid_samples(&counts);
     }
     context.settings.terms = TermSet::ALL;
     assert_eq!(film.samples(Term::L1), 16);
@@ -68,7 +71,8 @@ fn probe_caps_the_samples_it_traces_and_says_so() {
     let mut film = Film::new(8, 6);
     let mut buffer = PassBuffer::default();
     for pass in 0..12 {
-        render_pass(&context, &mut film, pass, &mut buffer);
+        let counts = render_pass(&context, &mut film, pass, &mut buffer);
+        common::assert_no_invalid_samples(&counts);
     }
     let probe = probe_pixel(&context, &film, 4, 3, TermSet::only(Term::L1), 5);
     let l1 = &probe.terms[0];

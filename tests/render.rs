@@ -74,21 +74,6 @@ fn lumiere() -> Command {
     Command::new(env!("CARGO_BIN_EXE_lumiere"))
 }
 
-/// The samples the render's guard dropped (NaN, infinite or negative
-/// radiance), read from the summary line "… N invalid samples dropped".
-fn invalid_samples(output: &std::process::Output) -> u64 {
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    let before = stdout
-        .split(" invalid samples dropped")
-        .next()
-        .filter(|b| b.len() < stdout.len())
-        .unwrap_or_else(|| panic!("no invalid sample count in the summary: {stdout}"));
-    let count = before.rsplit(' ').next().unwrap_or_default();
-    count
-        .parse()
-        .unwrap_or_else(|_| panic!("not a count: {count:?} in {stdout}"))
-}
-
 fn temp_path(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("lumiere-tests-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -116,7 +101,7 @@ fn cli_renders_png_and_exr_and_prints_a_summary() {
         summary.contains("2 spp") && summary.contains("Mrays/s"),
         "summary: {summary}"
     );
-    assert_eq!(invalid_samples(&out), 0);
+    assert_eq!(common::invalid_samples(&out), 0);
     let image = image::open(&png).unwrap();
     assert_eq!((image.width(), image.height()), (32, 24));
 
@@ -134,7 +119,7 @@ fn cli_renders_png_and_exr_and_prints_a_summary() {
         "stderr: {}",
         String::from_utf8_lossy(&out.stderr)
     );
-    assert_eq!(invalid_samples(&out), 0);
+    assert_eq!(common::invalid_samples(&out), 0);
     let (w, h, pixels) = lumiere::render::export::load_exr(&exr).unwrap();
     assert_eq!((w, h), (16, 16));
     assert!(pixels.iter().any(|p| p.max_element() > 0.0));
@@ -270,7 +255,7 @@ fn cli_render_reproduces_a_sidecar() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert!(String::from_utf8_lossy(&out.stdout).starts_with("3 spp"));
-    assert_eq!(invalid_samples(&out), 0);
+    assert_eq!(common::invalid_samples(&out), 0);
 
     let mut context = lumiere::RenderContext::new(scene, settings.clone());
     context.set_camera(&camera);

@@ -12,7 +12,9 @@ use lumiere::{Film, LightMode, RenderContext, RenderSettings, Term, TermSet};
 fn rays_of(settings: &RenderSettings, spp: u32) -> RayCounts {
     let context = RenderContext::new(builtin::cornell(), settings.clone());
     let mut film = Film::new(settings.width, settings.height);
-    render(&context, &mut film, Budget::Samples(spp), |_| {}).rays
+    let rays = render(&context, &mut film, Budget::Samples(spp), |_| {}).rays;
+    common::assert_no_invalid_samples(&rays);
+    rays
 }
 
 #[test]
@@ -77,6 +79,7 @@ fn russian_roulette_starts_after_the_fourth_reflection() {
         let context = RenderContext::new(builtin::furnace(0.6, 1.0), settings.clone());
         let mut film = Film::new(settings.width, settings.height);
         let rays = render(&context, &mut film, Budget::Samples(4), |_| {}).rays;
+        common::assert_no_invalid_samples(&rays);
         assert!(rays.bounce >= 2 * rays.camera, "{rays:?}");
         rays.skipped.roulette
     };
@@ -100,6 +103,7 @@ fn light_searches_that_meet_no_light_skip_the_scene_search_and_are_counted() {
     let furnace = RenderContext::new(builtin::furnace(0.5, 1.0), settings.clone());
     let mut film = Film::new(settings.width, settings.height);
     let rays = render(&furnace, &mut film, Budget::Samples(4), |_| {}).rays;
+    common::assert_no_invalid_samples(&rays);
     assert!(rays.bounce > 0, "{rays:?}");
     assert_eq!(rays.skipped.scene_searches, 0, "{rays:?}");
 }

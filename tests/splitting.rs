@@ -149,6 +149,7 @@ fn the_command_line_takes_auto() {
         stdout.contains("indirect samples: ") && stdout.contains("per first hit (auto)"),
         "{stdout}"
     );
+    assert_eq!(common::invalid_samples(&auto), 0);
     let zero = run("0");
     assert_eq!(zero.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&zero.stderr).contains("--indirect-samples"));
@@ -169,6 +170,7 @@ fn splitting_does_not_shorten_the_continuations() {
         let context = RenderContext::new(scene.clone(), settings.clone());
         let mut film = Film::new(settings.width, settings.height);
         let rays = render(&context, &mut film, Budget::Samples(16), |_| {}).rays;
+        common::assert_no_invalid_samples(&rays);
         assert!(rays.skipped.roulette > 0, "{rays:?}");
         rays.bounce as f64 / (rays.camera * m as u64) as f64
     };
@@ -220,7 +222,8 @@ fn a_map_of_counts_keeps_the_mean_and_cuts_the_noise_where_it_splits() {
         let mut context = RenderContext::new(scene.clone(), settings.clone());
         context.continuations = continuations;
         let mut film = Film::new(settings.width, settings.height);
-        render(&context, &mut film, Budget::Samples(64), |_| {});
+        let stats = render(&context, &mut film, Budget::Samples(64), |_| {});
+        common::assert_no_invalid_samples(&stats.rays);
         film
     };
     let map = SplitMap {

@@ -81,12 +81,13 @@ fn ray_to_floor(x: f32, y: f32) -> Ray {
 fn render_shared(scene: &Arc<Scene>, settings: &RenderSettings, spp: u32) -> Film {
     let context = RenderContext::new(scene.clone(), settings.clone());
     let mut film = Film::new(settings.width, settings.height);
-    lumiere::render::render(
+    let stats = lumiere::render::render(
         &context,
         &mut film,
         lumiere::render::Budget::Samples(spp),
         |_| {},
     );
+    common::assert_no_invalid_samples(&stats.rays);
     film
 }
 
@@ -608,6 +609,7 @@ fn recorded_paths_add_up_to_the_sample() {
                     context.trace_recorded(x, y, &stream, &mut recorded_counts, &mut log);
                 assert_eq!(radiance, plain, "{}", describe(&settings));
                 assert_eq!(recorded_counts, counts);
+                common::assert_no_invalid_samples(&counts);
                 assert_eq!(log.segments.len() as u64, counts.total());
                 let camera = log
                     .segments

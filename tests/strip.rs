@@ -38,6 +38,7 @@ fn run(args: &[&str], output: &Path) -> Output {
         "strip {args:?}: {}",
         String::from_utf8_lossy(&out.stderr)
     );
+    assert_eq!(common::invalid_samples(&out), 0, "strip {args:?}");
     out
 }
 
@@ -54,6 +55,7 @@ fn render_png(args: &[&str], output: &Path) -> RgbImage {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    assert_eq!(common::invalid_samples(&out), 0, "render {args:?}");
     image::open(output).unwrap().to_rgb8()
 }
 

@@ -39,6 +39,28 @@ pub fn render_with_stats(scene: Scene, settings: &RenderSettings, spp: u32) -> (
     (film, stats)
 }
 
+/// The samples a command's renders dropped (NaN, infinite or negative
+/// radiance), summed over its summary lines "… N invalid samples dropped"
+/// (`lumiere strip` prints one per row); panics if it printed none.
+pub fn invalid_samples(output: &std::process::Output) -> u64 {
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let counts: Vec<u64> = stdout
+        .lines()
+        .filter_map(|line| line.strip_suffix(" invalid samples dropped"))
+        .map(|before| {
+            let count = before.rsplit(' ').next().unwrap_or_default();
+            count
+                .parse()
+                .unwrap_or_else(|_| panic!("not a count: {count:?} in {stdout}"))
+        })
+        .collect();
+    assert!(
+        !counts.is_empty(),
+        "no invalid sample count in the output: {stdout}"
+    );
+    counts.iter().sum()
+}
+
 /// Asserts the guard dropped no sample (NaN, infinite or negative radiance).
 #[track_caller]
 pub fn assert_no_invalid_samples(counts: &RayCounts) {
