@@ -66,7 +66,13 @@ fn quad_light_matches_lamberts_polygon_formula() {
         let expected = ALBEDO as f64 / std::f64::consts::PI
             * polygon_irradiance(p, Vec3::Z, &light_corners(center), RADIANCE as f64);
         let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 40_000, 11);
-        common::assert_agrees(&format!("L1 at ({x}, {y})"), measured, expected, 4.0, 1e-5);
+        common::assert_agrees(
+            &format!("L1 at ({x}, {y})"),
+            measured,
+            expected,
+            4.0,
+            common::F32_ROUNDING,
+        );
     }
 }
 
@@ -96,7 +102,7 @@ fn quad_light_as_a_point_matches_inverse_square_law() {
             measured,
             expected,
             4.0,
-            1e-5,
+            common::F32_ROUNDING,
         );
     }
 }
@@ -119,7 +125,7 @@ fn mirror_shows_the_light_times_its_reflectance() {
     let (l2, _) = estimate(&context, ray, Term::L2, 16, 11);
     let expected = (reflectance * RADIANCE) as f64;
     assert!(
-        (l1 - expected).abs() < 1e-5 * expected,
+        (l1 - expected).abs() < common::F32_ROUNDING * expected,
         "L1 {l1}, expected {expected}"
     );
     assert_eq!((l0, l2), (0.0, 0.0));
@@ -161,7 +167,7 @@ fn spot_light_lights_its_cone_only() {
     let expected = rho_over_pi * intensity as f64 * cos / d2;
     let (inside, _) = estimate(&context, ray_to_floor(x as f32, 0.0), Term::L1, 4, 11);
     assert!(
-        (inside - expected).abs() < 1e-5 * expected,
+        (inside - expected).abs() < common::F32_ROUNDING * expected,
         "inside the cone: {inside}, expected {expected}"
     );
     // outside the outer cone (tan 0.5 · 2 ≈ 1.09): nothing
@@ -190,7 +196,7 @@ fn directional_light_gives_e_cos_theta() {
         (ALBEDO / std::f32::consts::PI * irradiance * std::f32::consts::FRAC_1_SQRT_2) as f64;
     let (measured, _) = estimate(&context, ray_to_floor(0.0, 0.0), Term::L1, 4, 11);
     assert!(
-        (measured - expected).abs() < 1e-5 * expected,
+        (measured - expected).abs() < common::F32_ROUNDING * expected,
         "{measured} vs {expected}"
     );
 }

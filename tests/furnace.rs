@@ -2,7 +2,9 @@
 
 mod common;
 
-use common::{assert_agrees, mean_and_error, render_film, small};
+use common::{
+    F32_ROUNDING, assert_agrees, mean_and_error, render_film, small, sphere_tessellation_error,
+};
 use lumiere::scene::builtin::{furnace, point_in_sphere};
 use lumiere::{Term, TermSet};
 
@@ -26,7 +28,7 @@ fn furnace_terms_match_the_geometric_series() {
             mean_and_error(&film, term),
             value,
             4.0,
-            1e-4,
+            F32_ROUNDING,
         );
     }
 }
@@ -40,18 +42,15 @@ fn point_light_in_a_sphere() {
     let l1 = albedo * intensity / (std::f64::consts::PI * radius * radius);
     for (term, value) in [(Term::L1, l1), (Term::L2, albedo * l1)] {
         let settings = small(24, 24, TermSet::only(term));
-        let film = render_film(
-            point_in_sphere(albedo as f32, intensity as f32, radius as f32),
-            &settings,
-            64,
-        );
-        // the tessellated sphere is up to 1 − cos(π/256) closer than R
+        let scene = point_in_sphere(albedo as f32, intensity as f32, radius as f32);
+        let tessellation = sphere_tessellation_error(&scene, radius);
+        let film = render_film(scene, &settings, 64);
         assert_agrees(
             &format!("point in sphere {term}"),
             mean_and_error(&film, term),
             value,
             4.0,
-            2e-4,
+            tessellation + F32_ROUNDING,
         );
     }
 }
@@ -77,13 +76,14 @@ fn sphere_light_in_a_sphere_keeps_the_point_lights_power() {
             glam::Quat::from_rotation_y(std::f32::consts::PI),
             glam::Vec3::new(0.0, 0.0, 1.0),
         );
+        let tessellation = sphere_tessellation_error(&scene, radius);
         let film = render_film(scene, &settings, 64);
         assert_agrees(
             &format!("sphere light {term}"),
             mean_and_error(&film, term),
             value,
             4.0,
-            2e-4,
+            tessellation + F32_ROUNDING,
         );
     }
     // seen directly, the sphere has radiance I/(π r²)
@@ -98,7 +98,7 @@ fn sphere_light_in_a_sphere_keeps_the_point_lights_power() {
     let expected = intensity / (std::f64::consts::PI * light_radius * light_radius);
     let (mean, _) = mean_and_error(&film, Term::L0);
     assert!(
-        (mean - expected).abs() < 1e-4 * expected,
+        (mean - expected).abs() < F32_ROUNDING * expected,
         "sphere light seen with radiance {mean}, expected {expected}"
     );
 }

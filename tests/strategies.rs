@@ -7,7 +7,10 @@ mod common;
 
 use std::sync::Arc;
 
-use common::{add_floor, assert_agrees, estimate, mean_and_error, polygon_irradiance, small};
+use common::{
+    F32_ROUNDING, add_floor, assert_agrees, estimate, mean_and_error, polygon_irradiance, small,
+    sphere_tessellation_error,
+};
 use glam::{DVec3, Vec2, Vec3};
 use lumiere::geometry::Ray;
 use lumiere::render::context::RenderContext;
@@ -178,7 +181,7 @@ fn every_light_strategy_matches_lamberts_polygon_formula() {
         for (x, y) in [(0.0, 0.0), (0.3, 0.1), (2.0, -1.0)] {
             let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 20_000, 23);
             let what = format!("{} L1 at ({x}, {y})", describe(&settings));
-            assert_agrees(&what, measured, floor_l1(x, y, &lights), 4.5, 1e-5);
+            assert_agrees(&what, measured, floor_l1(x, y, &lights), 4.5, F32_ROUNDING);
         }
     }
 }
@@ -222,7 +225,7 @@ fn uniform_and_power_light_selection_agree_with_two_unequal_lights() {
             for (x, y) in [(0.2, 0.0), (1.0, 0.6)] {
                 let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 20_000, 23);
                 let what = format!("{} L1 at ({x}, {y})", describe(&settings));
-                assert_agrees(&what, measured, floor_l1(x, y, &lights), 4.5, 1e-5);
+                assert_agrees(&what, measured, floor_l1(x, y, &lights), 4.5, F32_ROUNDING);
             }
         }
     }
@@ -256,7 +259,7 @@ fn dirac_lights_are_light_sampled_by_every_strategy() {
                     / d.length_squared();
             let (measured, _) = estimate(&context, ray_to_floor(x, y), Term::L1, 16, 23);
             assert!(
-                (measured - expected).abs() < 1e-5 * expected,
+                (measured - expected).abs() < F32_ROUNDING * expected,
                 "{light_sampling} point L1 at ({x}, {y}): {measured}, expected {expected}"
             );
         }
@@ -289,7 +292,7 @@ fn dirac_lights_are_light_sampled_by_every_strategy() {
             let expected = floor_l1(x, y, &[(center, RADIANCE)]) + from_point;
             let measured = estimate(&context, ray_to_floor(x, y), Term::L1, 20_000, 23);
             let what = format!("{} area + point L1 at ({x}, {y})", describe(&settings));
-            assert_agrees(&what, measured, expected, 4.5, 1e-5);
+            assert_agrees(&what, measured, expected, 4.5, F32_ROUNDING);
         }
     }
 }
@@ -325,7 +328,7 @@ fn every_strategy_matches_the_furnace() {
         for settings in sets {
             let film = render_shared(&scene, &settings, 48);
             let what = format!("furnace {term} with {}", describe(&settings));
-            assert_agrees(&what, mean_and_error(&film, term), value, 4.5, 1e-4);
+            assert_agrees(&what, mean_and_error(&film, term), value, 4.5, F32_ROUNDING);
         }
     }
 }
@@ -340,6 +343,7 @@ fn sphere_light_strategies_match_the_closed_form() {
         glam::Quat::from_rotation_y(std::f32::consts::PI),
         Vec3::new(0.0, 0.0, 1.0),
     );
+    let tessellation = sphere_tessellation_error(&scene, radius);
     let scene = Arc::new(scene);
     let l1 = albedo * intensity / (std::f64::consts::PI * radius * radius);
     let base = RenderSettings {
@@ -356,7 +360,8 @@ fn sphere_light_strategies_match_the_closed_form() {
         let settings = with(&base, light_sampling, IndirectSampling::Brdf);
         let film = render_shared(&scene, &settings, 64);
         let what = format!("sphere light L1 with {}", describe(&settings));
-        assert_agrees(&what, mean_and_error(&film, Term::L1), l1, 4.5, 2e-4);
+        let systematic = tessellation + F32_ROUNDING;
+        assert_agrees(&what, mean_and_error(&film, Term::L1), l1, 4.5, systematic);
     }
 }
 

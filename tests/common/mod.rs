@@ -119,6 +119,31 @@ pub fn paired_difference(a: &[f64], b: &[f64]) -> (f64, f64) {
     (mean, (variance / n).sqrt())
 }
 
+/// Relative error allowed, beyond the noise, for f32 arithmetic where the
+/// closed form is exact: a sample's value is a chain of a few dozen f32
+/// operations, each rounded by at most 2⁻²⁴ ≈ 6·10⁻⁸ of its result, so at
+/// most a few 10⁻⁶ even if every rounding went the same way.
+pub const F32_ROUNDING: f64 = 1e-5;
+
+/// The relative error a closed form for a sphere of radius `radius` centred
+/// at the origin can have on its tessellation, `scene`'s triangles: a
+/// light at the centre sees each facet at distances between h (the
+/// facet's plane) and `radius`, so its irradiance I cos θ / d² = I h / d³
+/// lies within [h/R, (R/h)²] of I/R². Returns the larger excursion for the
+/// closest plane, (R/h)² − 1.
+pub fn sphere_tessellation_error(scene: &Scene, radius: f64) -> f64 {
+    let closest = scene
+        .triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.vertices.map(|v| scene.positions[v as usize].as_dvec3());
+            let n = (b - a).cross(c - a).normalize();
+            n.dot(a).abs()
+        })
+        .fold(f64::INFINITY, f64::min);
+    (radius / closest).powi(2) - 1.0
+}
+
 /// Asserts `measured` agrees with `expected` within `z` standard errors plus
 /// a relative allowance `systematic` for known modelling error (tessellation).
 pub fn assert_agrees(what: &str, measured: (f64, f64), expected: f64, z: f64, systematic: f64) {
