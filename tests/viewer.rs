@@ -22,27 +22,6 @@ mod viewer_harness;
 use viewer_harness::{WindowShot, harness, wait_for};
 
 #[test]
-fn switching_l2_off_hides_it_without_restarting_the_film() {
-    let mut harness = harness();
-    let before = wait_for(&mut harness, "4 spp", |s| s.samples_per_pixel() >= 4);
-    harness.get_by_label("L2").click();
-    harness.run_steps(2);
-    assert!(!harness.state().state.settings.terms.contains(Term::L2));
-    let after = wait_for(&mut harness, "more samples without L2", |s| {
-        !s.terms.contains(Term::L2)
-            && s.term_samples[Term::L1.index()] > before.term_samples[Term::L1.index()] + 2
-    });
-    assert_eq!(
-        after.restarts, before.restarts,
-        "a term switched off must not restart the film"
-    );
-    // and back on: still the same film
-    harness.get_by_label("L2").click();
-    let shown = wait_for(&mut harness, "L2 shown", |s| s.terms.contains(Term::L2));
-    assert_eq!(shown.restarts, before.restarts);
-}
-
-#[test]
 fn light_mode_and_brdf_controls_change_the_settings_and_restart() {
     let mut harness = harness();
     let before = wait_for(&mut harness, "a pass", |s| s.samples_per_pixel() >= 1);
