@@ -22,27 +22,6 @@ mod viewer_harness;
 use viewer_harness::{WindowShot, harness, wait_for};
 
 #[test]
-fn light_mode_and_brdf_controls_change_the_settings_and_restart() {
-    let mut harness = harness();
-    let before = wait_for(&mut harness, "a pass", |s| s.samples_per_pixel() >= 1);
-    harness.get_by_label("All point").click();
-    harness.run_steps(2);
-    assert_eq!(harness.state().state.settings.light_mode, LightMode::Point);
-    let restarted = wait_for(&mut harness, "the restart", |s| {
-        s.restarts > before.restarts
-    });
-
-    harness.get_by_label("BRDF").click();
-    harness.run_steps(2);
-    harness.get_by_label("Mirror").click();
-    harness.run_steps(2);
-    assert_eq!(harness.state().state.settings.brdf, BrdfOverride::Mirror);
-    wait_for(&mut harness, "another restart", |s| {
-        s.restarts > restarted.restarts
-    });
-}
-
-#[test]
 fn the_lecture_integrator_is_a_choice_of_the_sampling_group() {
     let mut harness = harness();
     let fast = wait_for(&mut harness, "16 spp", |s| s.samples_per_pixel() >= 16);

@@ -4,20 +4,22 @@
 //! says it must be.
 #![cfg(feature = "gui")]
 
+use std::ops::RangeInclusive;
+
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use lumiere::app::LumiereApp;
-use lumiere::render::color::{linear_to_srgb, srgb_to_linear};
+use lumiere::render::color::{linear_to_srgb, luminance, srgb_to_linear};
 use lumiere::render::progressive::Snapshot;
 use lumiere::render::settings::DisplaySettings;
 use lumiere::render::{Budget, render};
 use lumiere::scene::builtin;
-use lumiere::{Film, RenderContext, Term, TermSet};
+use lumiere::{BrdfOverride, Film, LightMode, RenderContext, Term, TermSet};
 
 #[path = "common/viewer.rs"]
 mod viewer_harness;
-use viewer_harness::{WindowShot, harness, wait_for};
+use viewer_harness::{WindowShot, harness, harness_with_film, wait_for};
 
 /// Steps the UI until the worker is idle with `done` true, then photographs
 /// the window once a frame has drawn that snapshot.
@@ -92,6 +94,19 @@ fn shown_linear(shot: &WindowShot) -> Vec<[f64; 3]> {
         .into_iter()
         .map(|p| p.map(to_linear))
         .collect()
+}
+
+/// The name of the object the camera sees at the centre of film pixel
+/// (`x`, `y`) (the app's picking).
+fn object_at(harness: &mut Harness<'static, LumiereApp>, x: u32, y: u32) -> Option<String> {
+    let app = harness.state_mut();
+    let (width, height) = (app.state.settings.width, app.state.settings.height);
+    let uv = Vec2::new(
+        (x as f32 + 0.5) / width as f32,
+        (y as f32 + 0.5) / height as f32,
+    );
+    let object = app.pick(uv)?;
+    Some(app.scene.objects[object as usize].name.clone())
 }
 
 /// Asserts that every film pixel on screen is `expected` (linear) within
@@ -178,5 +193,184 @@ fn switching_l2_off_hides_it_without_restarting_the_film() {
     assert_eq!(
         more.term_samples[Term::L2.index()],
         before.term_samples[Term::L2.index()]
+    );
+}
+
+/// The shadow test's film: large enough that the area light's penumbra on
+/// the red wall spans a few pixels.
+const SHADOW_FILM: (u32, u32) = (128, 96);
+/// Rows of that film in which the tall block's shadow on the red wall has
+/// a nearly vertical edge, and columns that run from the lit wall, across
+/// the edge, into the shadow.
+const SHADOW_ROWS: RangeInclusive<u32> = 64..=78;
+const SHADOW_COLUMNS: RangeInclusive<u32> = 21..=33;
+
+/// The width of the shadow's edge over `SHADOW_ROWS`, in pixels.
+struct EdgeWidth {
+    mean: f64,
+    /// Of the mean, from the spread of the rows (noise and the edge's own
+    /// variation along the wall).
+    standard_error: f64,
+}
+
+impl EdgeWidth {
+    /// Measured on the red channel (the red wall reflects red only).
+    fn measure(shot: &WindowShot) -> Self {
+        let widths: Vec<f64> = SHADOW_ROWS
+            .map(|y| {
+                let red: Vec<f64> = SHADOW_COLUMNS
+                    .map(|x| to_linear(shot.colour_at(x, y)[0]))
+                    .collect();
+                rise_20_80(&red)
+            })
+            .collect();
+        let n = widths.len() as f64;
+        let mean = widths.iter().sum::<f64>() / n;
+        let variance = widths.iter().map(|w| (w - mean).powi(2)).sum::<f64>() / (n - 1.0);
+        Self {
+            mean,
+            standard_error: (variance / n).sqrt(),
+        }
+    }
+}
+
+/// The distance, in pixels, over which `profile` falls from 20 % to 80 % of
+/// the way from the lit level (the mean of its first three values) to the
+/// shadow's (its last three), each crossing interpolated between pixels.
+/// A step edge seen through square pixels is a one-pixel ramp: 0.6 px; a
+/// penumbra adds its width.
+fn rise_20_80(profile: &[f64]) -> f64 {
+    let n = profile.len();
+    let lit = profile[..3].iter().sum::<f64>() / 3.0;
+    let shadow = profile[n - 3..].iter().sum::<f64>() / 3.0;
+    let crossing = |fraction: f64| {
+        let level = lit - fraction * (lit - shadow);
+        let x = (1..n)
+            .find(|&x| profile[x] < level)
+            .expect("the profile falls to the shadow");
+        let (a, b) = (profile[x - 1], profile[x]);
+        (x - 1) as f64 + ((a - level) / (a - b)).clamp(0.0, 1.0)
+    };
+    crossing(0.8) - crossing(0.2)
+}
+
+/// A point light casts hard shadows: its shadow edges are steps where the
+/// authored area light's are penumbrae.
+#[test]
+fn all_point_lights_restart_and_sharpen_the_shadow_edges() {
+    let (width, height) = SHADOW_FILM;
+    let mut harness = harness_with_film(width, height);
+    // 256 spp: the rows' spread then gives the mean width a standard error
+    // under 0.1 px, against a narrowing of about a pixel
+    harness.state_mut().state.stop_at_spp = Some(256);
+    let (area, area_shot) = shot_when(&mut harness, "256 spp", |s| s.samples_per_pixel() >= 256);
+    for y in SHADOW_ROWS {
+        for x in SHADOW_COLUMNS {
+            let object = object_at(&mut harness, x, y);
+            assert_eq!(
+                object.as_deref(),
+                Some("red wall (left)"),
+                "pixel ({x}, {y})"
+            );
+        }
+    }
+
+    harness.get_by_label("All point").click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().state.settings.light_mode, LightMode::Point);
+    let (_, point_shot) = shot_when(&mut harness, "the restart, 256 spp", |s| {
+        s.restarts > area.restarts && s.samples_per_pixel() >= 256
+    });
+
+    let area_edge = EdgeWidth::measure(&area_shot);
+    let point_edge = EdgeWidth::measure(&point_shot);
+    // a step: 0.6 px through square pixels, plus the edge's slant across the
+    // rows and the noise
+    assert!(
+        point_edge.mean < 1.0,
+        "the point light's shadow edge rises over {:.2} px",
+        point_edge.mean
+    );
+    let noise = area_edge.standard_error.hypot(point_edge.standard_error);
+    assert!(
+        area_edge.mean - point_edge.mean > 8.0 * noise,
+        "the edge rises over {:.2} px with the area light, {:.2} px with the point (± {noise:.2})",
+        area_edge.mean,
+        point_edge.mean
+    );
+}
+
+/// Film pixels (row-major indices) on which the camera sees one of the blocks.
+fn block_pixels(harness: &mut Harness<'static, LumiereApp>) -> Vec<usize> {
+    let settings = &harness.state().state.settings;
+    let (width, height) = (settings.width, settings.height);
+    let mut blocks = Vec::new();
+    for y in 0..height {
+        for x in 0..width {
+            if object_at(harness, x, y).is_some_and(|name| name.ends_with(" block")) {
+                blocks.push((y * width + x) as usize);
+            }
+        }
+    }
+    blocks
+}
+
+/// Mirrors instead of the blocks' white Lambertian surfaces: the blocks'
+/// pixels change far beyond their noise.
+#[test]
+fn the_mirror_brdf_restarts_and_changes_the_blocks() {
+    let mut harness = harness();
+    harness.state_mut().state.stop_at_spp = Some(16);
+    let (authored, authored_shot) =
+        shot_when(&mut harness, "16 spp", |s| s.samples_per_pixel() >= 16);
+    harness.get_by_label("BRDF").click();
+    harness.run_steps(2);
+    harness.get_by_label("Mirror").click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().state.settings.brdf, BrdfOverride::Mirror);
+    let (mirror, mirror_shot) = shot_when(&mut harness, "the restart, 16 spp", |s| {
+        s.restarts > authored.restarts && s.samples_per_pixel() >= 16
+    });
+
+    // the blocks' mean displayed luminance, before and after
+    let blocks = block_pixels(&mut harness);
+    // the two blocks fill about an eighth of the image
+    assert!(
+        blocks.len() > 64 * 48 / 10,
+        "the blocks cover {} pixels",
+        blocks.len()
+    );
+    let n = blocks.len() as f64;
+    let blocks_mean = |shot: &WindowShot, value: &dyn Fn([u8; 3]) -> f64| {
+        let colours = shot.film_colours();
+        blocks.iter().map(|&i| value(colours[i])).sum::<f64>() / n
+    };
+    let shown = |colour: [u8; 3]| luminance(colour.map(to_linear).map(|c| c as f32).into()) as f64;
+    let change = blocks_mean(&mirror_shot, &shown) - blocks_mean(&authored_shot, &shown);
+    // Its uncertainty: the Monte Carlo noise of both means (each pixel's
+    // standard error summed over the terms, a bound for correlated terms),
+    // and the 8-bit rounding of both pictures.
+    let (authored_film, mirror_film) = (film_of(&authored), film_of(&mirror));
+    let standard_error = |film: &Film, i: usize| {
+        TermSet::COURSE
+            .iter()
+            .map(|t| film.term(t).expect("rendered").standard_error(i))
+            .sum::<f64>()
+    };
+    let noise = blocks
+        .iter()
+        .map(|&i| {
+            standard_error(&authored_film, i).powi(2) + standard_error(&mirror_film, i).powi(2)
+        })
+        .sum::<f64>()
+        .sqrt()
+        / n;
+    let rounding =
+        |colour: [u8; 3]| luminance(colour.map(linear_error).map(|c| c as f32).into()) as f64;
+    let rounding = blocks_mean(&authored_shot, &rounding) + blocks_mean(&mirror_shot, &rounding);
+    // ten standard errors beyond the rounding: no noise moves a mean that far
+    assert!(
+        change.abs() > 10.0 * noise + rounding,
+        "the blocks' luminance changed by {change:.4} (noise {noise:.4}, rounding {rounding:.4})"
     );
 }
