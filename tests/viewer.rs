@@ -11,88 +11,15 @@ use egui_kittest::kittest::Queryable;
 use lumiere::analysis::metrics::ReferenceImage;
 use lumiere::analysis::noise::DisplayMode;
 use lumiere::analysis::path_view::RayRole;
+use lumiere::app::LumiereApp;
 use lumiere::app::probe_view::PROBE_WINDOW_ID;
-use lumiere::app::{LumiereApp, ViewOptions};
 use lumiere::render::progressive::Snapshot;
 use lumiere::render::settings::Integrator;
-use lumiere::{BrdfOverride, LightMode, RenderSettings, Term};
+use lumiere::{BrdfOverride, LightMode, Term};
 
-fn harness() -> Harness<'static, LumiereApp> {
-    let options = ViewOptions {
-        settings: RenderSettings {
-            width: 64,
-            height: 48,
-            ..RenderSettings::default()
-        },
-        ..ViewOptions::default()
-    };
-    let mut harness = Harness::builder()
-        .with_size([1100.0, 1000.0])
-        .wgpu()
-        .build_eframe(|cc| LumiereApp::new(cc, options).expect("the Cornell box loads"));
-    harness.run_steps(2);
-    harness
-}
-
-/// Steps the UI until the worker's snapshot satisfies `done` (60 s at most).
-fn wait_for(
-    harness: &mut Harness<'static, LumiereApp>,
-    what: &str,
-    done: impl Fn(&Snapshot) -> bool,
-) -> Snapshot {
-    let deadline = Instant::now() + Duration::from_secs(60);
-    loop {
-        harness.step();
-        let snapshot = harness.state().snapshot();
-        if done(&snapshot) {
-            return (*snapshot).clone();
-        }
-        assert!(Instant::now() < deadline, "timed out waiting for {what}");
-        std::thread::sleep(Duration::from_millis(10));
-    }
-}
-
-#[test]
-fn switching_l2_off_hides_it_without_restarting_the_film() {
-    let mut harness = harness();
-    let before = wait_for(&mut harness, "4 spp", |s| s.samples_per_pixel() >= 4);
-    harness.get_by_label("L2").click();
-    harness.run_steps(2);
-    assert!(!harness.state().state.settings.terms.contains(Term::L2));
-    let after = wait_for(&mut harness, "more samples without L2", |s| {
-        !s.terms.contains(Term::L2)
-            && s.term_samples[Term::L1.index()] > before.term_samples[Term::L1.index()] + 2
-    });
-    assert_eq!(
-        after.restarts, before.restarts,
-        "a term switched off must not restart the film"
-    );
-    // and back on: still the same film
-    harness.get_by_label("L2").click();
-    let shown = wait_for(&mut harness, "L2 shown", |s| s.terms.contains(Term::L2));
-    assert_eq!(shown.restarts, before.restarts);
-}
-
-#[test]
-fn light_mode_and_brdf_controls_change_the_settings_and_restart() {
-    let mut harness = harness();
-    let before = wait_for(&mut harness, "a pass", |s| s.samples_per_pixel() >= 1);
-    harness.get_by_label("All point").click();
-    harness.run_steps(2);
-    assert_eq!(harness.state().state.settings.light_mode, LightMode::Point);
-    let restarted = wait_for(&mut harness, "the restart", |s| {
-        s.restarts > before.restarts
-    });
-
-    harness.get_by_label("BRDF").click();
-    harness.run_steps(2);
-    harness.get_by_label("Mirror").click();
-    harness.run_steps(2);
-    assert_eq!(harness.state().state.settings.brdf, BrdfOverride::Mirror);
-    wait_for(&mut harness, "another restart", |s| {
-        s.restarts > restarted.restarts
-    });
-}
+#[path = "common/viewer.rs"]
+mod viewer_harness;
+use viewer_harness::{WindowShot, harness, wait_for};
 
 #[test]
 fn the_lecture_integrator_is_a_choice_of_the_sampling_group() {
@@ -286,33 +213,6 @@ fn wait_for_app(
         assert!(Instant::now() < deadline, "timed out waiting for {what}");
         harness.step();
         std::thread::sleep(Duration::from_millis(10));
-    }
-}
-
-/// The window as rendered now, and where the image is in it (pixels).
-struct WindowShot {
-    window: image::RgbaImage,
-    image_rect: egui::Rect,
-}
-
-impl WindowShot {
-    fn take(harness: &mut Harness<'static, LumiereApp>) -> Self {
-        let ppp = harness.ctx.pixels_per_point();
-        let image_rect = harness.state().image_rect().expect("the image is drawn") * ppp;
-        let window = harness.render().expect("the harness renders");
-        Self { window, image_rect }
-    }
-
-    /// The colour at film pixel (`x`, `y`) of the 64×48 image.
-    fn colour_at(&self, x: u32, y: u32) -> [u8; 3] {
-        let rect = self.image_rect;
-        let point = rect.min
-            + egui::vec2(
-                (x as f32 + 0.5) / 64.0 * rect.width(),
-                (y as f32 + 0.5) / 48.0 * rect.height(),
-            );
-        let p = self.window.get_pixel(point.x as u32, point.y as u32);
-        [p[0], p[1], p[2]]
     }
 }
 
