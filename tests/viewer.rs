@@ -40,13 +40,13 @@ fn the_lecture_integrator_is_a_choice_of_the_sampling_group() {
                 .as_ref()
                 .is_some_and(|source| source.settings.integrator == Integrator::Lecture)
     });
-    // both estimate the same image: their means agree within their noise
-    let mean = |s: &Snapshot| {
-        let sum: f64 = s.radiance.iter().map(|p| (p[0] + p[1] + p[2]) as f64).sum();
-        sum / s.radiance.len() as f64
-    };
-    let (a, b) = (mean(&fast), mean(&lecture));
-    assert!(a > 0.0 && (a - b).abs() < 0.1 * a, "fast {a}, lecture {b}");
+    // another estimator ran: same scene, other noise (that the two agree
+    // in the mean is tests/lecture.rs's to check, with their errors)
+    assert!(lecture.radiance.iter().any(|p| p[..3].iter().any(|&c| c > 0.0)));
+    assert_ne!(
+        fast.radiance, lecture.radiance,
+        "the lecture integrator's image is the fast one's"
+    );
 }
 
 #[test]
