@@ -9,10 +9,10 @@
 //!   (`RayCounts::escaped`), or for the sphere case rays that missed it; must be 0;
 //! * **energy error** — where the answer is known, the largest relative error
 //!   of a term's image mean, and its z-score z = (|mean − exact| − tol·exact) / se
-//!   where tol is the case's stated systematic tolerance (0 unless the closed
-//!   form is approximate: a tessellated sphere, f32 positions 10⁵ m out); must
-//!   stay within the noise (z < [`Z_LIMIT`]) or, for noiseless terms, within
-//!   [`NOISELESS_TOLERANCE`];
+//!   where tol is the case's systematic tolerance per term (0 unless the
+//!   closed form is approximate; then computed from the tessellated sphere
+//!   or the f32 spacing of positions 10⁵ m out); must stay within the noise
+//!   (z < [`Z_LIMIT`]) or, for noiseless terms, within [`NOISELESS_TOLERANCE`];
 //! * **time**.
 //!
 //! Most closed forms are the furnace's: inside a closed surface of uniform

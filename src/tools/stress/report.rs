@@ -15,8 +15,10 @@ use crate::transport::counts::RayCounts;
 /// Largest |z| of a noisy term's mean against its exact value.
 pub const Z_LIMIT: f64 = 5.0;
 
-/// Largest relative error of a term with no noise (every sample equal).
-pub const NOISELESS_TOLERANCE: f64 = 1e-4;
+/// Largest relative error of a term with no noise (every sample equal):
+/// f32 rounding only. A sample is a chain of a few dozen f32 operations,
+/// each rounded by at most 2⁻²⁴ ≈ 6·10⁻⁸, so a few 10⁻⁶ at worst.
+pub const NOISELESS_TOLERANCE: f64 = 1e-5;
 
 /// What one case measured.
 #[derive(Clone, Debug)]
