@@ -43,6 +43,11 @@ pub fn wait_for(
     loop {
         harness.step();
         let snapshot = harness.state().snapshot();
+        // the film's guard zeroes NaN, infinite and negative samples: its count shows them
+        assert_eq!(
+            snapshot.rays.invalid_samples, 0,
+            "the render worker dropped invalid samples"
+        );
         if done(&snapshot) {
             return (*snapshot).clone();
         }
