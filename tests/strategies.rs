@@ -26,7 +26,6 @@ use lumiere::{Film, LightMode, RenderSettings, Term, TermSet};
 const ALBEDO: f32 = 0.5;
 const RADIANCE: f32 = 4.0;
 const HALF_SIDE: f32 = 0.25;
-const BLOCK: u32 = 16;
 
 // ── scenes and closed forms ───────────────────────────────────────────
 
@@ -503,12 +502,14 @@ fn block_pixels(film: &Film, term: Term, block: u32) -> Vec<Vec<f64>> {
 /// times; an 8×8 block's 4 096 do not, and its mean is too skewed.
 #[test]
 fn all_strategies_agree_on_the_cornell_box() {
+    // the side of a quarter of the 32×32 image
+    const QUARTER: u32 = 16;
     let scene = Arc::new(builtin::cornell());
     for term in [Term::L1, Term::L2] {
         let base = small(32, 32, TermSet::only(term));
         let reference = render_shared(&scene, &base, 64);
         let (reference_mean, reference_error) = mean_and_error(&reference, term);
-        let reference_blocks = block_pixels(&reference, term, BLOCK);
+        let reference_blocks = block_pixels(&reference, term, QUARTER);
         let mut sets = strategy_sets(&base);
         sets.remove(LightSampling::all().len() - 1); // the default itself
         sets.push(repeated(&base, 4, 4));
@@ -526,7 +527,7 @@ fn all_strategies_agree_on_the_cornell_box() {
                 "Cornell {term} with {}: {mean:.5} ± {error:.1e}, default {reference_mean:.5} ± {reference_error:.1e} (z = {z:.2})",
                 describe(&settings)
             );
-            for (i, (block, reference)) in block_pixels(&film, term, BLOCK)
+            for (i, (block, reference)) in block_pixels(&film, term, QUARTER)
                 .iter()
                 .zip(&reference_blocks)
                 .enumerate()
