@@ -42,7 +42,12 @@ fn the_lecture_integrator_is_a_choice_of_the_sampling_group() {
     });
     // another estimator ran: same scene, other noise (that the two agree
     // in the mean is tests/lecture.rs's to check, with their errors)
-    assert!(lecture.radiance.iter().any(|p| p[..3].iter().any(|&c| c > 0.0)));
+    assert!(
+        lecture
+            .radiance
+            .iter()
+            .any(|p| p[..3].iter().any(|&c| c > 0.0))
+    );
     assert_ne!(
         fast.radiance, lecture.radiance,
         "the lecture integrator's image is the fast one's"
