@@ -12,7 +12,12 @@ use lumiere::scene::{Camera, Projection, builtin};
 use lumiere::transport::path_log::SegmentKind;
 use lumiere::{Film, RenderContext, RenderSettings, Term, TermSet};
 
-fn cameras() -> Vec<(&'static str, CameraRays)> {
+/// Where `project_segment` puts its near plane: this fraction of the
+/// segment's deepest point.
+const NEAR_FRACTION: f32 = 1e-4;
+
+/// The test cameras, with the film sizes they are bound to.
+fn test_cameras() -> Vec<(&'static str, Camera, u32, u32)> {
     let tilted = Affine3A::from_rotation_translation(
         glam::Quat::from_euler(glam::EulerRot::YXZ, 0.7, -0.3, 0.2),
         Vec3::new(3.0, -1.0, 1e3),
@@ -23,29 +28,59 @@ fn cameras() -> Vec<(&'static str, CameraRays)> {
         projection,
     };
     vec![
-        (
-            "cornell",
-            CameraRays::new(&builtin::cornell().default_camera(), 64, 48),
-        ),
+        ("cornell", builtin::cornell().default_camera(), 64, 48),
         (
             "perspective",
-            CameraRays::new(&camera(Projection::Perspective { yfov: 1.1 }), 40, 30),
+            camera(Projection::Perspective { yfov: 1.1 }),
+            40,
+            30,
         ),
         (
             "orthographic",
-            CameraRays::new(
-                &camera(Projection::Orthographic { half_height: 2.5 }),
-                40,
-                30,
-            ),
+            camera(Projection::Orthographic { half_height: 2.5 }),
+            40,
+            30,
         ),
     ]
 }
 
+fn cameras() -> Vec<(&'static str, CameraRays)> {
+    test_cameras()
+        .into_iter()
+        .map(|(name, camera, width, height)| (name, CameraRays::new(&camera, width, height)))
+        .collect()
+}
+
+/// A camera ray's points project back to its film point up to f32 rounding
+/// (ε = 2⁻²³). Going to world space and back, a point's camera-space
+/// coordinates q pick up an absolute error of a few roundings of the world
+/// coordinates summed in each step: |δq| ≤ 8ε(|eye| + |p|) for the eye and
+/// the point p. The film takes q.x/(d·w) to pixels at W/(2w) per unit (d
+/// the depth, 1 for an orthographic camera; w the half-width of the image
+/// plane), and the quotient's two error terms add at most a factor
+/// (1 + max(w, h)) for points on the film: |δx| ≤ W/(2w)·(1 + max(w, h))·|δq|/d.
+/// Each way also rounds the film coordinate itself a few times (±8ε·W).
+///
+/// A perspective ray starts at the eye, which has no image: the segment is
+/// clipped where the near plane, at 10⁻⁴ of the far end's depth, cuts it.
+/// The clipped point is b·(1 − s) with 1 − s = 10⁻⁴ (the eye maps to the
+/// origin); the product b·s rounds by ε/2 of |b|, which is 5000ε of the
+/// clipped coordinates, 10⁴ε of their ratio x/z: another
+/// W/(2w)·max(w, h)·10⁴ε pixels.
 #[test]
 fn points_of_a_camera_ray_project_to_its_pixel_point() {
-    for (name, camera) in cameras() {
+    for (name, scene_camera, width, height) in test_cameras() {
+        let camera = CameraRays::new(&scene_camera, width, height);
         let size = camera.film_size();
+        let aspect = width as f32 / height as f32;
+        let (half_height, perspective) = match scene_camera.projection {
+            Projection::Perspective { yfov } => ((0.5 * yfov).tan(), true),
+            Projection::Orthographic { half_height } => (half_height, false),
+        };
+        let half_width = half_height * aspect;
+        let pixels_per_unit = size.x / (2.0 * half_width);
+        let camera_from_world = scene_camera.world_from_camera.inverse();
+        let eye = scene_camera.world_from_camera.translation.length();
         for k in 0..200u32 {
             // a low-discrepancy walk over the film
             let film = Vec2::new(
@@ -58,10 +93,29 @@ fn points_of_a_camera_ray_project_to_its_pixel_point() {
                 let (from, to) = camera
                     .project_segment(ray.origin, ray.at(t))
                     .expect("in front of the camera");
-                for p in [from, to] {
+                let point = ray.at(t);
+                let depth = if perspective {
+                    -camera_from_world.transform_point3(point).z
+                } else {
+                    1.0
+                };
+                let camera_space_error = 8.0 * f32::EPSILON * (eye + point.length());
+                let point_tolerance =
+                    pixels_per_unit * (1.0 + half_width.max(half_height)) * camera_space_error
+                        / depth
+                        + 8.0 * f32::EPSILON * size.x;
+                let clip_tolerance = if perspective {
+                    pixels_per_unit * half_width.max(half_height) * f32::EPSILON / NEAR_FRACTION
+                } else {
+                    0.0
+                };
+                for (p, tolerance) in [
+                    (from, point_tolerance + clip_tolerance),
+                    (to, point_tolerance),
+                ] {
                     assert!(
-                        (p - film).abs().max_element() < 2e-3 * size.x,
-                        "{name}: {p} against {film} at t = {t}"
+                        (p - film).abs().max_element() <= tolerance,
+                        "{name}: {p} against {film} at t = {t} (tolerance {tolerance:.1e} px)"
                     );
                 }
             }

@@ -14,6 +14,8 @@ use lumiere::render::settings::Sampler;
 use lumiere::render::{Budget, render};
 use lumiere::scene::builtin;
 use lumiere::scene::{Camera, Material, Projection, Scene};
+use lumiere::transport::counts::RayCounts;
+use lumiere::transport::sampler::SampleStream;
 use lumiere::transport::splitting::{SplitChoice, choose_continuations, choose_indirect_samples};
 use lumiere::{Film, RenderSettings, TermSet};
 
@@ -28,18 +30,36 @@ fn choice(scene: Scene, settings: RenderSettings) -> SplitChoice {
     choose_indirect_samples(&RenderContext::new(scene, settings))
 }
 
-/// The Cornell box's L2 is most of its noise (96 % of the relMSE at 64 spp):
-/// the pilot must find the continuations the noisier part and split them.
+/// The Cornell box's L2 is most of its noise: the pilot must find the
+/// continuations the noisier part (V_w > V_b) and split them.
+///
+/// Each pilot measures within − between, whose expectation is V_w − V_b
+/// (relMSE-weighted), and pilots of different seeds are independent: over
+/// 16 of them the mean difference must exceed zero by 4.5 of its standard
+/// errors, the pilots' spread giving the standard error (a t statistic with
+/// 15 degrees of freedom: P(t > 4.5) ≈ 2·10⁻⁴ were the parts equal).
 #[test]
 fn the_cornell_box_splits_its_continuations() {
     let settings = small(64, 48, TermSet::COURSE);
-    let independent = choice(builtin::cornell(), settings.clone());
+    let pilots: Vec<SplitChoice> = (0..16u64)
+        .map(|seed| {
+            let settings = RenderSettings {
+                seed,
+                ..settings.clone()
+            };
+            choice(builtin::cornell(), settings)
+        })
+        .collect();
+    let differences: Vec<f64> = pilots.iter().map(|p| p.within - p.between).collect();
+    let n = differences.len() as f64;
+    let mean = differences.iter().sum::<f64>() / n;
+    let variance = differences.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    let t = mean / (variance / n).sqrt();
     assert!(
-        independent.within > 2.0 * independent.between,
-        "continuation noise {} against first-vertex noise {}",
-        independent.within,
-        independent.between
+        t > 4.5,
+        "continuation noise less first-vertex noise {mean:.4}: t = {t:.2} ({differences:?})"
     );
+    let independent = pilots[0].clone();
     assert!(independent.first_rays > 1.0 && independent.continuation_rays > 1.0);
     assert!(independent.count >= 2, "{independent:?}");
     let sobol = choice(
@@ -156,33 +176,61 @@ fn the_command_line_takes_auto() {
     let _ = std::fs::remove_dir_all(&out_dir);
 }
 
-/// Splitting divides a continuation's weight by M, not its chance to go on:
-/// Russian roulette lets the continuations of a furnace run as many
-/// reflections with M = 4 as with M = 1 (3.32 and 3.32; with survival read
-/// off the continuation's β / M, when roulette started a reflection
-/// earlier, they ran 2.13 with M = 4 against 2.54).
+/// Splitting divides a continuation's weight by M, not its chance to go on.
+///
+/// In the furnace (albedo ρ, every ray hits the wall) a cosine-sampled
+/// reflection multiplies β by ρ, and the roulette from reflection 4 on
+/// survives with probability min(M β, 0.95) and divides β by it: M β is ρ⁴
+/// at reflection 4, then ρ at each one after, so reflection k ≥ 4 is traced
+/// with probability ρᵏ whatever M, and a continuation traces
+///
+/// ```text
+/// E[reflections] = 3 + Σ_{k=4}^{64} ρᵏ = 3 + ρ⁴ (1 − ρ⁶¹) / (1 − ρ)
+/// ```
+///
+/// (64 the bounce limit), 3.324 for ρ = 0.6. Reading survival off β alone
+/// would give 3 + ρ⁴/M · 1/(1 − ρ), 3.081 for M = 4. Each camera sample's
+/// reflections per continuation are one draw (its M continuations share a
+/// first vertex), so the mean over samples is a z-test with its standard
+/// error from their spread.
 #[test]
 fn splitting_does_not_shorten_the_continuations() {
-    let scene = Arc::new(builtin::furnace(0.6, 1.0));
-    let reflections_per_continuation = |m: u32| {
+    let albedo = 0.6f64;
+    let max_bounces = 64;
+    let expected = 3.0 + albedo.powi(4) * (1.0 - albedo.powi(max_bounces - 3)) / (1.0 - albedo);
+    let scene = Arc::new(builtin::furnace(albedo as f32, 1.0));
+    for m in [1u32, 4] {
         let mut settings = small(16, 16, TermSet::ALL);
+        settings.max_bounces = max_bounces as u32;
         settings.indirect_samples = m;
         let context = RenderContext::new(scene.clone(), settings.clone());
-        let mut film = Film::new(settings.width, settings.height);
-        let rays = render(&context, &mut film, Budget::Samples(16), |_| {}).rays;
-        common::assert_no_invalid_samples(&rays);
-        assert!(rays.skipped.roulette > 0, "{rays:?}");
-        rays.bounce as f64 / (rays.camera * m as u64) as f64
-    };
-    let (one, four) = (
-        reflections_per_continuation(1),
-        reflections_per_continuation(4),
-    );
-    assert!(one > 2.0, "{one} reflections per continuation with M = 1");
-    assert!(
-        (four / one - 1.0).abs() < 0.03,
-        "{four} reflections per continuation with M = 4, {one} with M = 1"
-    );
+        let (mut sum, mut sum2, mut roulette) = (0.0f64, 0.0f64, 0);
+        let samples_per_pixel = 16u64;
+        for pixel in 0..(settings.width * settings.height) as u64 {
+            let (x, y) = (pixel as u32 % settings.width, pixel as u32 / settings.width);
+            for sample in 0..samples_per_pixel {
+                let stream = SampleStream::new(settings.seed, pixel, sample);
+                let mut rays = RayCounts::default();
+                context.sample_pixel(x, y, &stream, &mut rays);
+                common::assert_no_invalid_samples(&rays);
+                assert_eq!(rays.camera, 1);
+                roulette += rays.skipped.roulette;
+                let per_continuation = rays.bounce as f64 / m as f64;
+                sum += per_continuation;
+                sum2 += per_continuation * per_continuation;
+            }
+        }
+        assert!(roulette > 0, "the roulette never ended a path");
+        let n = (settings.width * settings.height) as f64 * samples_per_pixel as f64;
+        let mean = sum / n;
+        let standard_error = ((sum2 / n - mean * mean) / (n - 1.0)).sqrt();
+        let z = (mean - expected) / standard_error;
+        assert!(
+            z.abs() <= 4.5,
+            "M = {m}: {mean:.4} ± {standard_error:.4} reflections per continuation, \
+             expected {expected:.4} (z = {z:.2})"
+        );
+    }
 }
 
 /// The pilot's map on the Cornell box: the regions differ, and the
@@ -249,17 +297,22 @@ fn a_map_of_counts_keeps_the_mean_and_cuts_the_noise_where_it_splits() {
         z.abs() < 4.0,
         "L2 {a:?} with one continuation, {b:?} with the map: z = {z:.2}"
     );
-    // the standard errors of the ×8 pixels, summed, in both films
-    let noise = |film: &Film| {
+    // the noise where the map splits: each ×8 pixel's squared standard
+    // error (its variance of the mean) in both films, paired pixel by pixel;
+    // pixels are independent, so the mean difference is a one-sided z-test
+    // that splitting lowered the variance (V_b + V_w/8 < V_b + V_w)
+    let squared_errors = |film: &Film| {
         let buffer = film.term(Term::L2).expect("L2");
         (0..film.pixel_count())
             .filter(|&i| map.at(i as u32 % 32, i as u32 / 32) == 8)
-            .map(|i| buffer.standard_error(i))
-            .sum::<f64>()
+            .map(|i| buffer.standard_error(i).powi(2))
+            .collect::<Vec<f64>>()
     };
-    let (one, eight) = (noise(&uniform), noise(&split));
+    let (lowered, error) =
+        common::paired_difference(&squared_errors(&uniform), &squared_errors(&split));
+    let z = lowered / error;
     assert!(
-        eight < 0.6 * one,
-        "×8 pixels: noise {eight:.4} against {one:.4} with one continuation"
+        z > 4.5,
+        "×8 pixels: variance lowered by {lowered:.3e} ± {error:.1e} (z = {z:.2})"
     );
 }

@@ -418,16 +418,23 @@ mod tests {
         }
     }
 
+    /// The mean of n uniform numbers has standard error √(1/12)/√n (the
+    /// uniform's variance is 1/12): across 10⁴ dimensions it must lie within
+    /// 4.5 of them of ½.
     #[test]
     fn uniform_numbers_are_in_range_and_decorrelated_across_dimensions() {
         let s = SampleStream::new(7, 3, 11);
+        let n = 10_000;
         let mut mean = 0.0;
-        for d in 0..10_000 {
+        for d in 0..n {
             let u = s.uniform(d);
             assert!((0.0..1.0).contains(&u));
             mean += u as f64;
         }
-        assert!((mean / 10_000.0 - 0.5).abs() < 0.01);
+        mean /= n as f64;
+        let standard_error = (1.0f64 / 12.0).sqrt() / (n as f64).sqrt();
+        let z = (mean - 0.5) / standard_error;
+        assert!(z.abs() <= 4.5, "mean {mean} of {n} uniforms (z = {z:.2})");
         assert_ne!(
             SampleStream::new(0, 0, 0).uniform(0),
             SampleStream::new(0, 0, 1).uniform(0)
