@@ -13,6 +13,7 @@
 //! | [`transport`] | the estimators of the terms: integrators, BRDFs, lights, sampling |
 //! | [`render`] | settings, the film, the render loop, the viewer's worker, export |
 //! | [`analysis`] | error metrics, convergence, noise views, the probe, the path view |
+//! | [`lesson`] | the course's lessons: steps of settings, titles, formulas, captions |
 //! | [`tools`] | `lumiere bench`, `stress` and `strip` |
 //! | `app` | the viewer (feature `gui`) |
 //!
@@ -36,6 +37,7 @@ pub mod analysis;
 #[cfg(feature = "gui")]
 pub mod app;
 pub mod geometry;
+pub mod lesson;
 pub mod render;
 pub mod scene;
 pub mod tools;

@@ -13,6 +13,7 @@ use clap::{Parser, Subcommand};
 use lumiere::tools::bench::memory::CountingAllocator;
 
 use cli::bench::BenchArgs;
+use cli::lessons::LessonsArgs;
 use cli::render::RenderArgs;
 use cli::stress::StressArgs;
 use cli::strip::StripArgs;
@@ -46,6 +47,8 @@ enum Command {
     Stress(StressArgs),
     /// Measure error against time, ray throughput and scaling; write CSVs and plots into a folder.
     Bench(BenchArgs),
+    /// List the built-in lessons (with their steps) and scenes.
+    Lessons(LessonsArgs),
 }
 
 fn main() -> ExitCode {
@@ -55,6 +58,7 @@ fn main() -> ExitCode {
         Some(Command::Strip(args)) => cli::strip::run(&args),
         Some(Command::Stress(args)) => cli::stress::run(&args),
         Some(Command::Bench(args)) => cli::bench::run(&args),
+        Some(Command::Lessons(args)) => cli::lessons::run(&args),
         None => cli::view::run(ViewArgs::defaults(), true),
     };
     match result {

@@ -10,6 +10,7 @@ mod convergence;
 pub mod display;
 mod export;
 mod interact;
+pub mod lesson_view;
 pub mod noise_view;
 mod panels;
 pub mod probe_view;
@@ -55,6 +56,10 @@ pub struct ViewOptions {
     pub probe: Option<(u32, u32)>,
     /// The probed sample whose path is drawn.
     pub probe_sample: crate::analysis::path_view::PathSample,
+    /// A lesson to open, on step `step` (from 0), its texts in `lang`.
+    pub lesson: Option<crate::lesson::Lesson>,
+    pub step: usize,
+    pub lang: crate::lesson::Lang,
 }
 
 impl Default for ViewOptions {
@@ -73,6 +78,9 @@ impl Default for ViewOptions {
             display_mode: DisplayMode::Image,
             probe: None,
             probe_sample: crate::analysis::path_view::PathSample::default(),
+            lesson: None,
+            step: 0,
+            lang: crate::lesson::Lang::default(),
         }
     }
 }
@@ -155,6 +163,8 @@ pub struct LumiereApp {
     pub probe: probe_view::ProbeState,
     /// A click on the image probes the pixel instead of selecting the object.
     pub probe_tool: bool,
+    /// The lesson open, if any, and its step.
+    pub lesson: lesson_view::LessonState,
 }
 
 impl LumiereApp {
@@ -180,6 +190,7 @@ impl LumiereApp {
         if let Some(render_state) = &cc.wgpu_render_state {
             display::BlitResources::install(render_state);
         }
+        install_fonts(&cc.egui_ctx);
         let scene = Arc::new(builtin::load(&options.scene).map_err(|e| e.to_string())?);
         let camera = scene.default_camera();
         let ctx = cc.egui_ctx.clone();
@@ -227,7 +238,14 @@ impl LumiereApp {
             noise_view: noise_view::NoiseViewState::default(),
             probe,
             probe_tool: false,
+            lesson: lesson_view::LessonState {
+                lang: options.lang,
+                ..Default::default()
+            },
         };
+        if let Some(lesson) = options.lesson {
+            lesson_view::open(&mut app, lesson, options.step);
+        }
         app.errors.show_plot = options.convergence_plot;
         if let Some(estimator) = options.compare {
             // B and the one-thread A start with the first frame (split::sync)
@@ -497,6 +515,7 @@ impl eframe::App for LumiereApp {
         self.dropped_files(&ctx);
         self.collect_exports();
         panels::shortcuts(self, &ctx);
+        lesson_view::shortcuts(self, &ctx);
         let snapshot = self.snapshot();
         reference::poll_capture(self);
         let serial = self.renderer_serial;
@@ -509,7 +528,9 @@ impl eframe::App for LumiereApp {
         panels::side_panel(self, ui);
         self.update_views(&ctx, &snapshot);
         let shown = split::shown_snapshot(self, &snapshot);
-        self.image_rect = Some(panels::viewport(self, ui, &shown));
+        let image_rect = panels::viewport(self, ui, &shown);
+        self.image_rect = Some(image_rect);
+        lesson_view::overlay(self, &ctx, image_rect);
         convergence::plot_window(self, &ctx);
         probe_view::probe_window(&ctx, &mut self.probe);
         self.bench_step(&ctx, &snapshot, started);
@@ -524,6 +545,23 @@ impl eframe::App for LumiereApp {
             eframe::set_value(storage, STORAGE_KEY, &self.state);
         }
     }
+}
+
+/// egui's fonts, then DejaVu Sans for what they lack: the lessons' formulas
+/// need subscripts (L₀, Lₑ), arrows and more of Unicode's mathematics.
+fn install_fonts(ctx: &egui::Context) {
+    const NAME: &str = "DejaVu Sans";
+    let mut fonts = egui::FontDefinitions::default();
+    fonts.font_data.insert(
+        NAME.into(),
+        Arc::new(egui::FontData::from_static(include_bytes!(
+            "../../assets/fonts/DejaVuSans.ttf"
+        ))),
+    );
+    for family in [egui::FontFamily::Proportional, egui::FontFamily::Monospace] {
+        fonts.families.entry(family).or_default().push(NAME.into());
+    }
+    ctx.set_fonts(fonts);
 }
 
 /// Whether two requests ask the worker for the same thing.

@@ -6,6 +6,7 @@ use clap::Parser;
 
 use lumiere::analysis::noise::DisplayMode;
 use lumiere::analysis::path_view::PathSample;
+use lumiere::lesson::Lang;
 use lumiere::render::settings::{IndirectSampling, LightSampling, Sampler};
 
 use super::Failure;
@@ -51,6 +52,15 @@ pub struct ViewArgs {
     /// Which of the probed pixel's samples the path view draws: a number from 1, or `brightest`.
     #[arg(long, default_value = "1", requires = "probe")]
     probe_sample: PathSample,
+    /// Open a lesson: a built-in one by name (`lumiere lessons` lists them) or a lesson file.
+    #[arg(long)]
+    lesson: Option<String>,
+    /// With --lesson: the step to open on, from 1.
+    #[arg(long, default_value = "1", requires = "lesson", value_parser = clap::value_parser!(u32).range(1..))]
+    step: u32,
+    /// The language of a lesson's texts: fr or en.
+    #[arg(long, default_value = "en")]
+    lang: Lang,
     #[command(flatten)]
     options: SceneOptions,
 }
@@ -75,6 +85,20 @@ fn check(settings: &lumiere::RenderSettings) -> Result<(), Failure> {
 pub fn run(args: ViewArgs, restore: bool) -> Result<(), Failure> {
     let settings = args.options.settings();
     check(&settings)?;
+    let lesson = match &args.lesson {
+        Some(name) => {
+            let lesson = lumiere::lesson::Lesson::load(name).map_err(Failure::runtime)?;
+            if args.step as usize > lesson.steps.len() {
+                return Err(Failure::usage_message(format!(
+                    "--step {}: the lesson {name} has {} steps",
+                    args.step,
+                    lesson.steps.len()
+                )));
+            }
+            Some(lesson)
+        }
+        None => None,
+    };
     let comparing = args.compare_light_sampling.is_some()
         || args.compare_indirect_sampling.is_some()
         || args.compare_sampler.is_some();
@@ -103,6 +127,9 @@ pub fn run(args: ViewArgs, restore: bool) -> Result<(), Failure> {
         display_mode: args.display_mode,
         probe: args.probe,
         probe_sample: args.probe_sample,
+        lesson,
+        step: args.step as usize - 1,
+        lang: args.lang,
     };
     lumiere::app::run(options).map_err(|e| Failure::runtime(anyhow::anyhow!(e)))
 }

@@ -14,6 +14,12 @@ pub const CORNELL_GLTF: &[u8] = include_bytes!("../../assets/cornell-box.gltf");
 /// Names of the built-in scenes.
 pub const NAMES: [&str; 1] = ["cornell"];
 
+/// The built-in scenes and what each shows.
+pub const SCENES: [(&str, &str); 1] = [(
+    "cornell",
+    "the Cornell box: an area light in the ceiling, a red and a green wall, two white blocks",
+)];
+
 /// The built-in Cornell box.
 pub fn cornell() -> Scene {
     super::gltf::load_slice(CORNELL_GLTF, "cornell", None).expect("the embedded Cornell box loads")

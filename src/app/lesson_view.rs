@@ -1,0 +1,132 @@
+//! A lesson in the viewer: the step shown, the keys that step through it
+//! (→ or PageDown next, ← or PageUp previous, Home the first: a
+//! presenter's clicker sends these), and its title, formula and caption
+//! drawn over the image, large enough to read from the back of a room.
+
+use std::sync::Arc;
+
+use eframe::egui;
+
+use super::LumiereApp;
+use crate::lesson::{Lang, Lesson};
+
+/// The lesson open in the viewer, if any, and where it is.
+#[derive(Clone, Debug, Default)]
+pub struct LessonState {
+    pub lesson: Option<Arc<Lesson>>,
+    /// The step shown, from 0.
+    pub step: usize,
+    pub lang: Lang,
+}
+
+/// Opens `lesson` on step `step` (from 0; clamped to the last).
+pub fn open(app: &mut LumiereApp, lesson: Lesson, step: usize) {
+    app.lesson.lesson = Some(Arc::new(lesson));
+    show_step(app, step);
+}
+
+/// Shows step `index` of the open lesson: its scene, settings, display and
+/// sample count replace the current ones (the film restarts).
+pub fn show_step(app: &mut LumiereApp, index: usize) {
+    let Some(lesson) = app.lesson.lesson.clone() else {
+        return;
+    };
+    let index = index.min(lesson.steps.len() - 1);
+    let (width, height) = (app.state.settings.width, app.state.settings.height);
+    let view = match lesson.view(index, width, height) {
+        Ok(view) => view,
+        Err(e) => {
+            app.message = Some(format!("error: step {}: {e}", index + 1));
+            return;
+        }
+    };
+    app.lesson.step = index;
+    if view.scene != app.scene_spec {
+        app.load_scene(&view.scene);
+    }
+    app.state.settings = view.settings;
+    app.state.display = view.display;
+    app.state.noise.mode = view.display_mode;
+    app.state.stop_at_spp = Some(view.spp);
+    if let Some((x, y)) = view.probe {
+        app.probe.pick(x, y);
+    }
+    app.message = Some(format!(
+        "{} — step {} of {}",
+        lesson.title.get(app.lesson.lang),
+        index + 1,
+        lesson.steps.len()
+    ));
+}
+
+/// The keys of a presenter's clicker, while no text field has the focus.
+pub fn shortcuts(app: &mut LumiereApp, ctx: &egui::Context) {
+    if app.lesson.lesson.is_none() || ctx.memory(|m| m.focused().is_some()) {
+        return;
+    }
+    let pressed = |keys: &[egui::Key]| ctx.input(|i| keys.iter().any(|&k| i.key_pressed(k)));
+    let step = app.lesson.step;
+    if pressed(&[egui::Key::ArrowRight, egui::Key::PageDown]) {
+        show_step(app, step + 1);
+    } else if pressed(&[egui::Key::ArrowLeft, egui::Key::PageUp]) {
+        show_step(app, step.saturating_sub(1));
+    } else if pressed(&[egui::Key::Home]) {
+        show_step(app, 0);
+    }
+}
+
+/// Draws the step's title and formula at the top of `image` and its caption
+/// at the bottom, each on a dark band, in sizes relative to the image.
+pub fn overlay(app: &LumiereApp, ctx: &egui::Context, image: egui::Rect) {
+    let Some(lesson) = &app.lesson.lesson else {
+        return;
+    };
+    let step = &lesson.steps[app.lesson.step];
+    let lang = app.lesson.lang;
+    let painter = ctx.layer_painter(egui::LayerId::new(
+        egui::Order::Foreground,
+        egui::Id::unique("lesson overlay"),
+    ));
+    // sizes in proportion to the image, so that a projector's scale keeps them readable
+    let unit = (image.height() / 24.0).clamp(12.0, 48.0);
+    let margin = unit * 0.5;
+    let width = image.width() - 2.0 * margin;
+    let band = egui::Color32::from_black_alpha(170);
+    let text = |string: &str, size: f32| {
+        painter.layout(
+            string.to_owned(),
+            egui::FontId::proportional(size),
+            egui::Color32::WHITE,
+            width,
+        )
+    };
+    let title = text(
+        &format!("{}. {}", app.lesson.step + 1, step.title.get(lang)),
+        unit * 1.2,
+    );
+    let formula = text(&step.formula, unit);
+    let top = egui::Rect::from_min_size(
+        image.min,
+        egui::vec2(
+            image.width(),
+            title.size().y + formula.size().y + 3.0 * margin,
+        ),
+    );
+    painter.rect_filled(top, 0.0, band);
+    let title_pos = image.min + egui::vec2(margin, margin);
+    let formula_pos = title_pos + egui::vec2(0.0, title.size().y + margin);
+    painter.galley(title_pos, title, egui::Color32::WHITE);
+    painter.galley(formula_pos, formula, egui::Color32::WHITE);
+
+    let caption = text(step.caption.get(lang), unit * 0.8);
+    let bottom = egui::Rect::from_min_max(
+        egui::pos2(image.min.x, image.max.y - caption.size().y - 2.0 * margin),
+        image.max,
+    );
+    painter.rect_filled(bottom, 0.0, band);
+    painter.galley(
+        bottom.min + egui::vec2(margin, margin),
+        caption,
+        egui::Color32::WHITE,
+    );
+}

@@ -1,0 +1,131 @@
+//! What a lesson step sets, with the names and values of lumiere's command
+//! line, and the view it gives.
+
+use std::str::FromStr;
+
+use serde::{Deserialize, Deserializer};
+
+use crate::analysis::noise::DisplayMode;
+use crate::render::settings::{
+    BrdfOverride, DisplaySettings, IndirectSampling, Integrator, LightMode, LightSampling,
+    MisHeuristic, RenderSettings, Sampler, TermSet, Tonemap,
+};
+
+/// Samples per pixel a step stops at, unless it says otherwise.
+pub const DEFAULT_STEP_SPP: u32 = 64;
+
+/// The settings a step (or a lesson's defaults) changes; what it leaves
+/// out keeps its value from below.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StepSettings {
+    /// `cornell` or a glTF path.
+    pub scene: Option<String>,
+    #[serde(default, deserialize_with = "parsed")]
+    pub terms: Option<TermSet>,
+    #[serde(default, deserialize_with = "parsed")]
+    pub lights: Option<LightMode>,
+    pub light_radius: Option<f32>,
+    #[serde(default, deserialize_with = "parsed")]
+    pub brdf: Option<BrdfOverride>,
+    pub phong_exponent: Option<f32>,
+    pub phong_specular: Option<f32>,
+    #[serde(default, deserialize_with = "parsed")]
+    pub light_sampling: Option<LightSampling>,
+    #[serde(default, deserialize_with = "parsed")]
+    pub mis_heuristic: Option<MisHeuristic>,
+    #[serde(default, deserialize_with = "parsed")]
+    pub indirect_sampling: Option<IndirectSampling>,
+    pub light_samples: Option<u32>,
+    pub indirect_samples: Option<u32>,
+    #[serde(default, deserialize_with = "parsed")]
+    pub sampler: Option<Sampler>,
+    #[serde(default, deserialize_with = "parsed")]
+    pub integrator: Option<Integrator>,
+    /// Samples per pixel the step stops at.
+    pub spp: Option<u32>,
+    /// Exposure in EV (stops).
+    pub exposure: Option<f32>,
+    #[serde(default, deserialize_with = "parsed")]
+    pub tonemap: Option<Tonemap>,
+    #[serde(default, deserialize_with = "parsed")]
+    pub display: Option<DisplayMode>,
+    /// A pixel to probe, [x, y] from the top left: its samples' paths are drawn.
+    pub probe: Option<[u32; 2]>,
+}
+
+/// Everything a step shows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepView {
+    pub scene: String,
+    pub settings: RenderSettings,
+    pub display: DisplaySettings,
+    pub display_mode: DisplayMode,
+    pub spp: u32,
+    pub probe: Option<(u32, u32)>,
+}
+
+impl StepView {
+    /// lumiere's defaults on a film of `width` × `height`.
+    pub fn new(width: u32, height: u32) -> Self {
+        Self {
+            scene: "cornell".into(),
+            settings: RenderSettings {
+                width,
+                height,
+                ..RenderSettings::default()
+            },
+            display: DisplaySettings::default(),
+            display_mode: DisplayMode::Image,
+            spp: DEFAULT_STEP_SPP,
+            probe: None,
+        }
+    }
+}
+
+impl StepSettings {
+    /// Sets in `view` what these settings say.
+    pub fn apply(&self, view: &mut StepView) {
+        fn set<T: Clone>(target: &mut T, value: &Option<T>) {
+            if let Some(value) = value {
+                *target = value.clone();
+            }
+        }
+        let s = &mut view.settings;
+        set(&mut view.scene, &self.scene);
+        set(&mut s.terms, &self.terms);
+        set(&mut s.light_mode, &self.lights);
+        if self.light_radius.is_some() {
+            s.light_radius = self.light_radius;
+        }
+        set(&mut s.brdf, &self.brdf);
+        set(&mut s.phong_exponent, &self.phong_exponent);
+        set(&mut s.phong_specular, &self.phong_specular);
+        set(&mut s.light_sampling, &self.light_sampling);
+        set(&mut s.mis_heuristic, &self.mis_heuristic);
+        set(&mut s.indirect_sampling, &self.indirect_sampling);
+        set(&mut s.light_samples, &self.light_samples);
+        set(&mut s.indirect_samples, &self.indirect_samples);
+        set(&mut s.sampler, &self.sampler);
+        set(&mut s.integrator, &self.integrator);
+        set(&mut view.spp, &self.spp);
+        set(&mut view.display.exposure, &self.exposure);
+        set(&mut view.display.tonemap, &self.tonemap);
+        set(&mut view.display_mode, &self.display);
+        if let Some([x, y]) = self.probe {
+            view.probe = Some((x, y));
+        }
+    }
+}
+
+/// A value written as on the command line ("L0,L1", "point", "mis"), parsed
+/// by its type; an unknown one is refused with the list of choices.
+fn parsed<'de, D, T>(deserializer: D) -> Result<Option<T>, D::Error>
+where
+    D: Deserializer<'de>,
+    T: FromStr,
+    T::Err: std::fmt::Display,
+{
+    let text = String::deserialize(deserializer)?;
+    text.parse().map(Some).map_err(serde::de::Error::custom)
+}

@@ -1,0 +1,162 @@
+//! Lessons: the built-in lesson loads and every step is a valid view; a
+//! broken lesson file is refused with its line and field; `lumiere lessons`
+//! lists the lessons and scenes; the viewer refuses a lesson it cannot open.
+
+use std::process::Command;
+
+use lumiere::lesson::{Lang, Lesson};
+use lumiere::render::settings::{LightMode, Sampler};
+use lumiere::{Term, TermSet};
+
+fn lumiere() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_lumiere"))
+}
+
+/// A lesson of one step whose settings table holds `settings`.
+fn one_step(settings: &str) -> String {
+    format!(
+        r#"name = "test"
+title = {{ fr = "Essai", en = "Test" }}
+
+[[steps]]
+slug = "only"
+formula = "L = L₀"
+title = {{ fr = "Un", en = "One" }}
+caption = {{ fr = "Une phrase.", en = "A sentence." }}
+[steps.settings]
+{settings}
+"#
+    )
+}
+
+/// The problem a lesson's text is refused with.
+fn refusal(text: &str) -> String {
+    Lesson::parse(text, "test.toml")
+        .expect_err("a broken lesson must be refused")
+        .to_string()
+}
+
+#[test]
+fn the_built_in_lesson_follows_the_lecture_in_at_least_twelve_valid_steps() {
+    let lesson = Lesson::load("simulation-notions").unwrap_or_else(|e| panic!("{e}"));
+    assert!(lesson.steps.len() >= 12, "{} steps", lesson.steps.len());
+    for (i, step) in lesson.steps.iter().enumerate() {
+        for lang in [Lang::Fr, Lang::En] {
+            assert!(!step.title.get(lang).trim().is_empty(), "step {}", i + 1);
+            assert!(!step.caption.get(lang).trim().is_empty(), "step {}", i + 1);
+        }
+        assert!(!step.formula.trim().is_empty(), "step {}", i + 1);
+        let view = lesson
+            .view(i, 640, 480)
+            .unwrap_or_else(|e| panic!("step {}: {e}", i + 1));
+        assert_eq!((view.settings.width, view.settings.height), (640, 480));
+    }
+    // the lecture's order: emission, direct, indirect first
+    let first_terms: Vec<TermSet> = (0..3)
+        .map(|i| lesson.view(i, 640, 480).unwrap().settings.terms)
+        .collect();
+    assert_eq!(
+        first_terms,
+        [Term::L0, Term::L1, Term::L2].map(TermSet::only).to_vec()
+    );
+}
+
+#[test]
+fn steps_set_only_what_they_say_over_the_lessons_defaults() {
+    let text = one_step("lights = \"point\"").replace(
+        "[[steps]]",
+        "[defaults]\nsampler = \"sobol\"\nspp = 16\n\n[[steps]]",
+    );
+    let lesson = Lesson::parse(&text, "test.toml").unwrap_or_else(|e| panic!("{e}"));
+    let view = lesson.view(0, 320, 240).unwrap();
+    assert_eq!(view.settings.light_mode, LightMode::Point);
+    assert_eq!(view.settings.sampler, Sampler::Sobol);
+    assert_eq!(view.spp, 16);
+    assert_eq!(view.settings.terms, TermSet::COURSE);
+    assert_eq!(view.scene, "cornell");
+}
+
+#[test]
+fn a_broken_lesson_is_refused_with_its_line_and_field() {
+    // an unknown key in a step's settings: its line and its name
+    let problem = refusal(&one_step("colour = \"red\""));
+    assert!(
+        problem.starts_with("test.toml: line 10") && problem.contains("colour"),
+        "{problem}"
+    );
+    // a value of the wrong kind: the line of the field, and the choices
+    let problem = refusal(&one_step("lights = \"lasers\""));
+    assert!(
+        problem.contains("line 10") && problem.contains("lasers") && problem.contains("point"),
+        "{problem}"
+    );
+    // a setting out of range: the step and the setting
+    let problem = refusal(&one_step("phong_specular = 3.0"));
+    assert!(
+        problem.contains("step 1") && problem.contains("specular"),
+        "{problem}"
+    );
+    // a probe off the image
+    let problem = refusal(&one_step("probe = [5000, 2]"));
+    assert!(problem.contains("probe"), "{problem}");
+    // not TOML at all
+    let problem = refusal("name = \"x\"\n[[steps]\n");
+    assert!(problem.contains("line 2"), "{problem}");
+    // a missing caption
+    let problem = refusal(&one_step("").replace(
+        "caption = { fr = \"Une phrase.\", en = \"A sentence.\" }\n",
+        "",
+    ));
+    assert!(problem.contains("caption"), "{problem}");
+    // two steps with one slug
+    let twice = one_step("").replace("[[steps]]", "[[steps]]\nslug = \"only\"\nformula = \"x\"\ntitle = { fr = \"a\", en = \"a\" }\ncaption = { fr = \"a\", en = \"a\" }\n\n[[steps]]");
+    let problem = refusal(&twice);
+    assert!(
+        problem.contains("step 2") && problem.contains("slug"),
+        "{problem}"
+    );
+    // no steps
+    let problem = refusal("name = \"x\"\ntitle = { fr = \"a\", en = \"a\" }\nsteps = []\n");
+    assert!(problem.contains("no [[steps]]"), "{problem}");
+}
+
+#[test]
+fn the_command_line_lists_the_lessons_and_refuses_a_broken_one() {
+    let out = lumiere()
+        .args(["lessons", "--lang", "fr"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let listing = String::from_utf8_lossy(&out.stdout);
+    let lesson = Lesson::load("simulation-notions").unwrap();
+    assert!(listing.contains("simulation-notions") && listing.contains("cornell"));
+    assert!(
+        listing.contains(lesson.steps[0].title.get(Lang::Fr)),
+        "{listing}"
+    );
+
+    let dir = std::env::temp_dir().join(format!("lumiere-lessons-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let broken = dir.join("broken.toml");
+    std::fs::write(&broken, one_step("lights = \"lasers\"")).unwrap();
+    // (a build without the viewer refuses `view` itself)
+    if cfg!(feature = "gui") {
+        for lesson in [broken.to_str().unwrap(), "no-such-lesson"] {
+            let out = lumiere()
+                .args(["view", "--lesson", lesson])
+                .output()
+                .unwrap();
+            let stderr = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(1), "{lesson}: {stderr}");
+            assert!(stderr.contains(lesson), "{stderr}");
+            assert!(!stderr.contains("panicked"), "{stderr}");
+        }
+        let out = lumiere()
+            .args(["view", "--lesson", "simulation-notions", "--step", "99"])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2));
+        assert!(String::from_utf8_lossy(&out.stderr).contains("--step 99"));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,0 +1,87 @@
+//! The built-in lesson in the viewer: it opens on the step asked for, the
+//! keys of a presenter's clicker step through it, and each step's settings
+//! reach the render worker; its texts are drawn over the image.
+#![cfg(feature = "gui")]
+
+use eframe::egui;
+use egui_kittest::Harness;
+use lumiere::RenderSettings;
+use lumiere::app::{LumiereApp, ViewOptions};
+use lumiere::lesson::{Lang, Lesson};
+
+#[path = "common/viewer.rs"]
+mod viewer;
+
+use viewer::wait_for;
+
+const WIDTH: u32 = 64;
+const HEIGHT: u32 = 48;
+
+/// The viewer on the built-in lesson's step `step` (from 0), in `lang`.
+fn lesson_harness(step: usize, lang: Lang) -> Harness<'static, LumiereApp> {
+    let options = ViewOptions {
+        settings: RenderSettings {
+            width: WIDTH,
+            height: HEIGHT,
+            ..RenderSettings::default()
+        },
+        lesson: Some(Lesson::load("simulation-notions").expect("the built-in lesson")),
+        step,
+        lang,
+        ..ViewOptions::default()
+    };
+    let mut harness = Harness::builder()
+        .with_size([1100.0, 800.0])
+        .wgpu()
+        .build_eframe(|cc| LumiereApp::new(cc, options).expect("the lesson opens"));
+    harness.run_steps(2);
+    harness
+}
+
+/// Waits until the worker renders step `index`'s settings and shows its title.
+fn assert_step_reaches_the_worker(harness: &mut Harness<'static, LumiereApp>, index: usize) {
+    let lesson = Lesson::load("simulation-notions").unwrap();
+    let view = lesson.view(index, WIDTH, HEIGHT).unwrap();
+    assert_eq!(harness.state().lesson.step, index);
+    wait_for(harness, &format!("step {}'s settings", index + 1), |s| {
+        s.source
+            .as_ref()
+            .is_some_and(|source| source.settings == view.settings)
+    });
+    assert_eq!(harness.state().state.display, view.display);
+    assert_eq!(harness.state().state.stop_at_spp, Some(view.spp));
+    let lang = harness.state().lesson.lang;
+    let title = format!("{}. {}", index + 1, lesson.steps[index].title.get(lang));
+    harness.run_steps(2);
+    // the overlay is painted, not a widget: its text is in the frame's shapes
+    let painted = harness.output().shapes.iter().any(
+        |clipped| matches!(&clipped.shape, egui::Shape::Text(text) if text.galley.text() == title),
+    );
+    assert!(painted, "the title '{title}' is not drawn");
+}
+
+#[test]
+fn the_clicker_keys_step_through_the_lesson_and_each_step_reaches_the_worker() {
+    let mut harness = lesson_harness(2, Lang::Fr);
+    assert_step_reaches_the_worker(&mut harness, 2);
+    let last = Lesson::load("simulation-notions").unwrap().steps.len() - 1;
+    for (key, expected) in [
+        (egui::Key::ArrowRight, 3),
+        (egui::Key::PageDown, 4),
+        (egui::Key::ArrowLeft, 3),
+        (egui::Key::PageUp, 2),
+        (egui::Key::Home, 0),
+    ] {
+        harness.key_press(key);
+        harness.run_steps(2);
+        assert_step_reaches_the_worker(&mut harness, expected);
+    }
+    // past either end, the lesson stays on its first or last step
+    harness.key_press(egui::Key::ArrowLeft);
+    harness.run_steps(2);
+    assert_eq!(harness.state().lesson.step, 0);
+    harness.state_mut().lesson.step = last;
+    harness.key_press(egui::Key::ArrowRight);
+    harness.run_steps(2);
+    assert_eq!(harness.state().lesson.step, last);
+}
