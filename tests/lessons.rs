@@ -160,3 +160,20 @@ fn the_command_line_lists_the_lessons_and_refuses_a_broken_one() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The complete example of `docs/lessons.md` is a lesson that loads.
+#[test]
+fn the_documented_example_is_a_valid_lesson() {
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/lessons.md"))
+        .expect("docs/lessons.md");
+    let example = doc
+        .split("```toml\n")
+        .nth(1)
+        .and_then(|rest| rest.split("```").next())
+        .expect("a ```toml block");
+    let lesson = Lesson::parse(example, "docs/lessons.md").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(lesson.steps.len(), 2);
+    let point = lesson.view(1, 64, 48).unwrap();
+    assert_eq!(point.settings.light_mode, LightMode::Point);
+    assert_eq!(point.settings.terms, TermSet::only(Term::L1));
+}
