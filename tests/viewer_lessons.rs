@@ -5,6 +5,7 @@
 
 use eframe::egui;
 use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
 use lumiere::RenderSettings;
 use lumiere::app::{LumiereApp, ViewOptions};
 use lumiere::lesson::{Lang, Lesson};
@@ -84,4 +85,49 @@ fn the_clicker_keys_step_through_the_lesson_and_each_step_reaches_the_worker() {
     harness.key_press(egui::Key::ArrowRight);
     harness.run_steps(2);
     assert_eq!(harness.state().lesson.step, last);
+}
+
+/// The Lesson group: a lesson file that cannot be read is reported and
+/// changes nothing; the built-in lesson opens from the list; F5 enters and
+/// leaves presentation mode, which hides the side panel.
+#[test]
+fn the_lesson_group_opens_lessons_refuses_broken_ones_and_presents() {
+    let mut harness = viewer::harness();
+    let before = harness.state().state.clone();
+    let broken = std::env::temp_dir().join(format!("lumiere-broken-{}.toml", std::process::id()));
+    std::fs::write(&broken, "name = \"x\"\n[[steps]\n").unwrap();
+    harness.state_mut().lesson.file_field = broken.to_string_lossy().into_owned();
+    harness.get_by_label("Open").click();
+    harness.run_steps(2);
+    let message = harness.state().message.clone().unwrap_or_default();
+    assert!(
+        message.contains(&*broken.to_string_lossy()) && message.contains("line 2"),
+        "{message}"
+    );
+    assert!(harness.state().lesson.lesson.is_none());
+    assert_eq!(
+        harness.state().state,
+        before,
+        "a broken lesson changed the settings"
+    );
+    let _ = std::fs::remove_file(&broken);
+
+    harness.get_by_label("lesson").click();
+    harness.run_steps(2);
+    harness.get_by_label("simulation-notions").click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().lesson.step, 0);
+    assert_step_reaches_the_worker(&mut harness, 0);
+
+    assert!(harness.query_by_label("Terms").is_some());
+    harness.key_press(egui::Key::F5);
+    harness.run_steps(2);
+    assert!(harness.state().lesson.presenting);
+    assert!(
+        harness.query_by_label("Terms").is_none(),
+        "the side panel is shown"
+    );
+    harness.key_press(egui::Key::F5);
+    harness.run_steps(2);
+    assert!(harness.query_by_label("Terms").is_some());
 }

@@ -17,6 +17,92 @@ pub struct LessonState {
     /// The step shown, from 0.
     pub step: usize,
     pub lang: Lang,
+    /// Presentation mode: no side panel, the interface scaled for a projector.
+    pub presenting: bool,
+    /// Text of the lesson file field.
+    pub file_field: String,
+}
+
+/// The key that enters and leaves presentation mode.
+pub const PRESENT_KEY: egui::Key = egui::Key::F5;
+
+/// The Lesson group: open a built-in lesson or a file, step through it,
+/// choose the language, present.
+pub fn lesson_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+    egui::CollapsingHeader::new("Lesson")
+        .default_open(true)
+        .show(ui, |ui| {
+            let open_name = app.lesson.lesson.as_ref().map(|l| l.name.clone());
+            let mut chosen = None;
+            egui::ComboBox::from_label("lesson")
+                .selected_text(open_name.as_deref().unwrap_or("none"))
+                .show_ui(ui, |ui| {
+                    for (name, _) in crate::lesson::BUILTIN {
+                        if ui
+                            .selectable_label(open_name.as_deref() == Some(name), *name)
+                            .clicked()
+                        {
+                            chosen = Some(name.to_string());
+                        }
+                    }
+                })
+                .response
+                .on_hover_text("The built-in lessons: the course's lecture, step by step");
+            ui.horizontal(|ui| {
+                let field = ui.add(
+                    egui::TextEdit::singleline(&mut app.lesson.file_field)
+                        .hint_text("lesson.toml")
+                        .desired_width(150.0),
+                );
+                let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+                if (ui.button("Open").clicked() || enter) && !app.lesson.file_field.is_empty() {
+                    chosen = Some(app.lesson.file_field.clone());
+                }
+            });
+            if let Some(name) = chosen {
+                // a lesson that cannot be read leaves everything as it is
+                match Lesson::load(&name) {
+                    Ok(lesson) => open(app, lesson, 0),
+                    Err(e) => app.message = Some(format!("error: {e}")),
+                }
+            }
+            let Some(lesson) = app.lesson.lesson.clone() else {
+                return;
+            };
+            ui.horizontal(|ui| {
+                let step = app.lesson.step;
+                if ui
+                    .add_enabled(step > 0, egui::Button::new("◀"))
+                    .on_hover_text("Previous step (← or PageUp)")
+                    .clicked()
+                {
+                    show_step(app, step - 1);
+                }
+                ui.label(format!("step {} of {}", step + 1, lesson.steps.len()));
+                if ui
+                    .add_enabled(step + 1 < lesson.steps.len(), egui::Button::new("▶"))
+                    .on_hover_text("Next step (→ or PageDown)")
+                    .clicked()
+                {
+                    show_step(app, step + 1);
+                }
+                if ui.button("Close").on_hover_text("Close the lesson").clicked() {
+                    app.lesson.lesson = None;
+                }
+            });
+            ui.horizontal(|ui| {
+                for lang in [Lang::Fr, Lang::En] {
+                    ui.radio_value(&mut app.lesson.lang, lang, lang.to_string());
+                }
+                ui.checkbox(&mut app.lesson.presenting, "present")
+                    .on_hover_text("Presentation mode (F5): no side panel, the interface scaled for a projector");
+            });
+            ui.add(
+                egui::Slider::new(&mut app.state.ui_scale, 0.75..=3.0)
+                    .text("interface scale"),
+            )
+            .on_hover_text("The size of the whole interface, in presentation mode too");
+        });
 }
 
 /// Opens `lesson` on step `step` (from 0; clamped to the last).
@@ -59,9 +145,16 @@ pub fn show_step(app: &mut LumiereApp, index: usize) {
     ));
 }
 
-/// The keys of a presenter's clicker, while no text field has the focus.
+/// The keys of a presenter's clicker, while no text field has the focus,
+/// and F5 for presentation mode.
 pub fn shortcuts(app: &mut LumiereApp, ctx: &egui::Context) {
-    if app.lesson.lesson.is_none() || ctx.memory(|m| m.focused().is_some()) {
+    if ctx.memory(|m| m.focused().is_some()) {
+        return;
+    }
+    if ctx.input(|i| i.key_pressed(PRESENT_KEY)) {
+        app.lesson.presenting = !app.lesson.presenting;
+    }
+    if app.lesson.lesson.is_none() {
         return;
     }
     let pressed = |keys: &[egui::Key]| ctx.input(|i| keys.iter().any(|&k| i.key_pressed(k)));

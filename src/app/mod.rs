@@ -60,6 +60,8 @@ pub struct ViewOptions {
     pub lesson: Option<crate::lesson::Lesson>,
     pub step: usize,
     pub lang: crate::lesson::Lang,
+    /// Start in presentation mode.
+    pub present: bool,
 }
 
 impl Default for ViewOptions {
@@ -81,6 +83,7 @@ impl Default for ViewOptions {
             lesson: None,
             step: 0,
             lang: crate::lesson::Lang::default(),
+            present: false,
         }
     }
 }
@@ -98,6 +101,8 @@ pub struct Persisted {
     pub export_dir: String,
     /// The image or a noise view (mode, whose samples, scale).
     pub noise: NoiseView,
+    /// The size of the interface (egui's zoom factor), for a projector.
+    pub ui_scale: f32,
 }
 
 impl Default for Persisted {
@@ -109,6 +114,7 @@ impl Default for Persisted {
             per_term_exr: false,
             export_dir: ".".into(),
             noise: NoiseView::default(),
+            ui_scale: 1.0,
         }
     }
 }
@@ -240,6 +246,7 @@ impl LumiereApp {
             probe_tool: false,
             lesson: lesson_view::LessonState {
                 lang: options.lang,
+                presenting: options.present,
                 ..Default::default()
             },
         };
@@ -524,8 +531,14 @@ impl eframe::App for LumiereApp {
             let serial = self.compare.serial;
             reference::measure(self, reference::Side::B, serial, &b);
         }
+        let scale = self.state.ui_scale.clamp(0.5, 4.0);
+        if ctx.zoom_factor() != scale {
+            ctx.set_zoom_factor(scale);
+        }
         panels::status_bar(self, ui, &snapshot);
-        panels::side_panel(self, ui);
+        if !self.lesson.presenting {
+            panels::side_panel(self, ui);
+        }
         self.update_views(&ctx, &snapshot);
         let shown = split::shown_snapshot(self, &snapshot);
         let image_rect = panels::viewport(self, ui, &shown);

@@ -164,6 +164,7 @@ pub fn side_panel(app: &mut LumiereApp, ui: &mut egui::Ui) {
         .default_size(300.0)
         .show(ui, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
+                super::lesson_view::lesson_ui(app, ui);
                 terms_ui(app, ui);
                 lights_ui(app, ui);
                 materials_ui(app, ui);

@@ -61,6 +61,9 @@ pub struct ViewArgs {
     /// The language of a lesson's texts: fr or en.
     #[arg(long, default_value = "en")]
     lang: Lang,
+    /// Start in presentation mode (F5): no side panel.
+    #[arg(long)]
+    present: bool,
     #[command(flatten)]
     options: SceneOptions,
 }
@@ -130,6 +133,7 @@ pub fn run(args: ViewArgs, restore: bool) -> Result<(), Failure> {
         lesson,
         step: args.step as usize - 1,
         lang: args.lang,
+        present: args.present,
     };
     lumiere::app::run(options).map_err(|e| Failure::runtime(anyhow::anyhow!(e)))
 }
