@@ -557,3 +557,35 @@ fn the_adaptive_checkbox_stops_converged_pixels_and_unticked_samples_all() {
         uniform.samples_per_pixel() as u64 * pixels
     );
 }
+
+/// "Reset to defaults" undoes a class's tinkering: every setting, the
+/// scene's light edits and the display go back to lumiere's defaults, and
+/// the worker renders them.
+#[test]
+fn reset_to_defaults_brings_every_setting_back() {
+    let mut harness = harness();
+    harness.get_by_label("All point").click();
+    harness.state_mut().state.display.exposure = 3.0;
+    let light = harness
+        .state()
+        .scene
+        .materials
+        .iter()
+        .position(|m| m.is_emissive())
+        .unwrap();
+    std::sync::Arc::make_mut(&mut harness.state_mut().scene).materials[light].emission *= 2.0;
+    harness.run_steps(2);
+    harness.get_by_label("Reset to defaults").click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().state, lumiere::app::Persisted::default());
+    let authored = lumiere::scene::builtin::cornell();
+    assert_eq!(
+        harness.state().scene.materials[light].emission,
+        authored.materials[light].emission
+    );
+    wait_for(&mut harness, "the default settings", |s| {
+        s.source
+            .as_ref()
+            .is_some_and(|source| source.settings == lumiere::RenderSettings::default())
+    });
+}

@@ -364,6 +364,17 @@ impl LumiereApp {
         }
     }
 
+    /// Every setting back to its default (the film's size too), the scene
+    /// reloaded from its file without its per-object and per-light edits,
+    /// the camera back to the scene's, the lesson closed.
+    pub fn reset_to_defaults(&mut self) {
+        self.state = Persisted::default();
+        self.lesson = lesson_view::LessonState::default();
+        let spec = self.scene_spec.clone();
+        self.load_scene(&spec);
+        self.message = Some("every setting is back to its default".into());
+    }
+
     /// Scripted runs: once the image has enough samples, save the window and quit.
     fn script_exit(&mut self, ctx: &egui::Context, snapshot: &Snapshot) {
         let Some(target) = self.exit_after_spp else {

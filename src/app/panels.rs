@@ -591,6 +591,16 @@ fn render_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                     app.save_screenshot();
                 }
             });
+            if ui
+                .button("Reset to defaults")
+                .on_hover_text(
+                    "Every setting back to lumiere's defaults, the scene reloaded without its edits \
+                     (settings are kept between runs otherwise)",
+                )
+                .clicked()
+            {
+                app.reset_to_defaults();
+            }
             ui.horizontal(|ui| {
                 let mut stop = app.state.stop_at_spp.is_some();
                 let label = ui.checkbox(&mut stop, "stop at");
