@@ -589,3 +589,35 @@ fn reset_to_defaults_brings_every_setting_back() {
             .is_some_and(|source| source.settings == lumiere::RenderSettings::default())
     });
 }
+
+/// The light's strength is shown in the unit of what it is: the Cornell
+/// box's area light as a radiance Lₑ (W/m²/sr), collapsed to a point as the
+/// peak intensity I = Lₑ A (W/sr); its power Φ = π A Lₑ is the same in both.
+#[test]
+fn light_units_follow_the_light_mode_and_the_power_stays() {
+    let mut harness = harness();
+    let scene = lumiere::scene::builtin::cornell();
+    let (index, light) = scene
+        .materials
+        .iter()
+        .enumerate()
+        .find(|(_, m)| m.is_emissive())
+        .unwrap();
+    let area: f32 = scene
+        .triangles
+        .iter()
+        .filter(|t| t.material as usize == index)
+        .map(|t| {
+            let [a, b, c] = t.vertices.map(|v| scene.positions[v as usize]);
+            0.5 * (b - a).cross(c - a).length()
+        })
+        .sum();
+    let radiance = light.emission.max_element();
+    let power = format!("Φ = {:.4} W", std::f32::consts::PI * area * radiance);
+    harness.get_by_label(&format!("{} (Lₑ, W/m²/sr)", light.name));
+    harness.get_by_label(&power);
+    harness.get_by_label("All point").click();
+    harness.run_steps(2);
+    harness.get_by_label(&format!("{} (I, W/sr)", light.name));
+    harness.get_by_label(&power);
+}

@@ -96,6 +96,8 @@ fn the_lesson_group_opens_lessons_refuses_broken_ones_and_presents() {
     let before = harness.state().state.clone();
     let broken = std::env::temp_dir().join(format!("lumiere-broken-{}.toml", std::process::id()));
     std::fs::write(&broken, "name = \"x\"\n[[steps]\n").unwrap();
+    harness.get_by_label("Lesson").click();
+    harness.run_steps(2);
     harness.state_mut().lesson.file_field = broken.to_string_lossy().into_owned();
     harness.get_by_label("Open").click();
     harness.run_steps(2);

@@ -12,7 +12,8 @@ use super::LumiereApp;
 use super::probe_view::ImageMapping;
 use crate::geometry::accel::{Accel, Hit};
 use crate::geometry::camera::CameraRays;
-use crate::scene::{BrdfModel, Camera, Material, Scene};
+use crate::render::settings::LightMode;
+use crate::scene::{BrdfModel, Camera, Material, PunctualKind, Scene};
 
 /// Radians per point of mouse drag.
 const ORBIT_SPEED: f32 = 0.008;
@@ -289,17 +290,46 @@ pub fn selection_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
         });
 }
 
-/// Each light's power: punctual lights' intensity, emissive materials' radiance.
+/// Each light's strength in the unit of what it is in the current light
+/// mode — a point light's intensity I (W/sr), a sphere light's or an
+/// emitter's radiance Lₑ (W/m²/sr), an emitter collapsed to a point's peak
+/// intensity — with its power Φ (W), which the modes keep.
 pub fn light_power_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
     let scene = Arc::clone(&app.scene);
+    let mode = app.state.settings.light_mode;
+    let radius = crate::transport::lights::sphere_light_radius(&scene, &app.state.settings);
+    let sphere_area = std::f32::consts::PI * radius * radius;
     for (i, light) in scene.lights.iter().enumerate() {
-        let mut strength = light.intensity.max_element();
-        let unit = if light.kind == crate::scene::PunctualKind::Directional {
-            "W/m²"
-        } else {
-            "W/sr"
+        let intensity = light.intensity.max_element();
+        // what the light is in this mode, in its own unit, and its power Φ
+        let (value, unit, per_intensity, power) = match light.kind {
+            PunctualKind::Directional => (intensity, "E, W/m²", 1.0, None),
+            kind => {
+                let solid_angle = match kind {
+                    PunctualKind::Spot {
+                        inner_cone_angle,
+                        outer_cone_angle,
+                    } => {
+                        2.0 * std::f32::consts::PI
+                            * (1.0 - 0.5 * (inner_cone_angle.cos() + outer_cone_angle.cos()))
+                    }
+                    _ => 4.0 * std::f32::consts::PI,
+                };
+                let power = Some(intensity * solid_angle);
+                if mode == LightMode::Area {
+                    // a sphere of radius r: Lₑ = I / (π r²)
+                    (
+                        intensity / sphere_area,
+                        "Lₑ, W/m²/sr",
+                        1.0 / sphere_area,
+                        power,
+                    )
+                } else {
+                    (intensity, "I, W/sr", 1.0, power)
+                }
+            }
         };
-        if power_field(ui, &mut strength, &format!("{} ({unit})", light.name)) {
+        if let Some(value) = strength_field(ui, value, &light.name, unit, power) {
             let light = &mut Arc::make_mut(&mut app.scene).lights[i];
             let colour = light.intensity / light.intensity.max_element().max(1e-12);
             let colour = if colour == Vec3::ZERO {
@@ -307,22 +337,72 @@ pub fn light_power_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             } else {
                 colour
             };
-            light.intensity = colour * strength;
+            light.intensity = colour * (value / per_intensity);
         }
     }
+    let key = Arc::as_ptr(&scene) as usize;
+    if app.emitter_areas.0 != key {
+        app.emitter_areas = (key, emitter_areas(&scene));
+    }
+    let areas = app.emitter_areas.1.clone();
     for (i, material) in scene
         .materials
         .iter()
         .enumerate()
         .filter(|(_, m)| m.is_emissive())
     {
-        let mut strength = material.emission.max_element();
-        if power_field(ui, &mut strength, &format!("{} (W/m²/sr)", material.name)) {
+        let radiance = material.emission.max_element();
+        let area = areas[i];
+        // a Lambertian emitter of area A: Φ = π A Lₑ per emitting side
+        let sides = if material.double_sided { 2.0 } else { 1.0 };
+        let power = Some(std::f32::consts::PI * area * radiance * sides);
+        let (value, unit, per_radiance) = if mode == LightMode::Point && area > 0.0 {
+            // collapsed to a point: the cosine lobe's peak I = Lₑ A
+            (radiance * area, "I, W/sr", area)
+        } else {
+            (radiance, "Lₑ, W/m²/sr", 1.0)
+        };
+        if let Some(value) = strength_field(ui, value, &material.name, unit, power) {
             let material = &mut Arc::make_mut(&mut app.scene).materials[i];
             let colour = material.emission / material.emission.max_element();
-            material.emission = colour * strength.max(1e-6);
+            material.emission = colour * (value / per_radiance).max(1e-6);
         }
     }
+}
+
+/// The area of each material's triangles (zero for most): what an emissive
+/// material's radiance is spread over.
+fn emitter_areas(scene: &Scene) -> Vec<f32> {
+    let mut areas = vec![0.0; scene.materials.len()];
+    for triangle in &scene.triangles {
+        if !scene.materials[triangle.material as usize].is_emissive() {
+            continue;
+        }
+        let [a, b, c] = triangle.vertices.map(|v| scene.positions[v as usize]);
+        areas[triangle.material as usize] += 0.5 * (b - a).cross(c - a).length();
+    }
+    areas
+}
+
+/// A light's strength in `unit`, with its power Φ beside it when it has
+/// one; the new value when it was changed.
+fn strength_field(
+    ui: &mut egui::Ui,
+    value: f32,
+    name: &str,
+    unit: &str,
+    power: Option<f32>,
+) -> Option<f32> {
+    let mut value = value;
+    let changed = power_field(ui, &mut value, &format!("{name} ({unit})"));
+    if let Some(power) = power {
+        ui.label(
+            egui::RichText::new(format!("Φ = {power:.4} W"))
+                .weak()
+                .small(),
+        );
+    }
+    changed.then_some(value)
 }
 
 /// A labelled number field for a light's strength; true when it changed.

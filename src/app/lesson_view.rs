@@ -30,7 +30,7 @@ pub const PRESENT_KEY: egui::Key = egui::Key::F5;
 /// choose the language, present.
 pub fn lesson_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
     egui::CollapsingHeader::new("Lesson")
-        .default_open(true)
+        .default_open(app.lesson.lesson.is_some())
         .show(ui, |ui| {
             let open_name = app.lesson.lesson.as_ref().map(|l| l.name.clone());
             let mut chosen = None;

@@ -171,6 +171,8 @@ pub struct LumiereApp {
     pub probe_tool: bool,
     /// The lesson open, if any, and its step.
     pub lesson: lesson_view::LessonState,
+    /// The emitting area of each material, for the scene at this address.
+    emitter_areas: (usize, Vec<f32>),
 }
 
 impl LumiereApp {
@@ -249,6 +251,7 @@ impl LumiereApp {
                 presenting: options.present,
                 ..Default::default()
             },
+            emitter_areas: (0, Vec::new()),
         };
         if let Some(lesson) = options.lesson {
             lesson_view::open(&mut app, lesson, options.step);

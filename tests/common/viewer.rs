@@ -15,7 +15,9 @@ pub fn harness() -> Harness<'static, LumiereApp> {
     harness_with_film(64, 48)
 }
 
-/// The viewer on the Cornell box, rendering a `width`×`height` image.
+/// The viewer on the Cornell box, rendering a `width`×`height` image, in a
+/// window tall enough for the whole side panel (a widget scrolled out of
+/// view has no node to click).
 pub fn harness_with_film(width: u32, height: u32) -> Harness<'static, LumiereApp> {
     let options = ViewOptions {
         settings: RenderSettings {
@@ -26,7 +28,7 @@ pub fn harness_with_film(width: u32, height: u32) -> Harness<'static, LumiereApp
         ..ViewOptions::default()
     };
     let mut harness = Harness::builder()
-        .with_size([1100.0, 1000.0])
+        .with_size([1100.0, 1300.0])
         .wgpu()
         .build_eframe(|cc| LumiereApp::new(cc, options).expect("the Cornell box loads"));
     harness.run_steps(2);
