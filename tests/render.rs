@@ -238,6 +238,7 @@ fn cli_render_reproduces_a_sidecar() {
         settings: settings.clone(),
         display: Default::default(),
         samples_per_pixel: 3,
+        edits: Default::default(),
     };
     let json = temp_path("shot.json");
     sidecar.save(&json).unwrap();
@@ -280,6 +281,91 @@ fn cli_render_reproduces_a_sidecar() {
         .unwrap();
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("shot.json"));
+}
+
+/// A screenshot of an edited scene (one block's colour and roughness, the
+/// light twice as bright) records its edits, and `render --settings`
+/// renders the edited scene, bit for bit.
+#[test]
+fn cli_render_reproduces_the_scene_edits_of_a_sidecar() {
+    use lumiere::render::sidecar::Sidecar;
+    use lumiere::scene::edits::SceneEdits;
+
+    let original = builtin::cornell();
+    let mut edited = original.clone();
+    let block = edited
+        .objects
+        .iter()
+        .position(|o| {
+            o.name.to_lowercase().contains("block") || o.name.to_lowercase().contains("box")
+        })
+        .unwrap_or(0) as u32;
+    let material = edited.own_material(block);
+    material.base_color = glam::Vec3::new(0.1, 0.2, 0.8);
+    material.roughness = 0.3;
+    let light = edited
+        .materials
+        .iter()
+        .position(|m| m.is_emissive())
+        .unwrap();
+    edited.materials[light].emission *= 2.0;
+    let edits = SceneEdits::between(&original, &edited);
+    assert!(!edits.objects.is_empty());
+    // the edits applied to the file as loaded give the edited scene back
+    let mut again = builtin::cornell();
+    edits.apply(&mut again).unwrap();
+    assert_eq!(SceneEdits::between(&original, &again), edits);
+
+    let settings = small(24, 18, TermSet::COURSE);
+    let sidecar = Sidecar {
+        scene: "cornell".into(),
+        camera: original.default_camera(),
+        settings: settings.clone(),
+        display: Default::default(),
+        samples_per_pixel: 2,
+        edits,
+    };
+    let json = temp_path("edited.json");
+    sidecar.save(&json).unwrap();
+    let exr = temp_path("edited.exr");
+    let out = lumiere()
+        .args(["render", "--settings"])
+        .arg(&json)
+        .arg("-o")
+        .arg(&exr)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let expected = render_film(edited, &settings, 2).radiance(settings.terms);
+    let unedited = render_film(original, &settings, 2).radiance(settings.terms);
+    let (_, _, pixels) = lumiere::render::export::load_exr(&exr).unwrap();
+    assert_eq!(
+        pixels, expected,
+        "the sidecar's render is not the edited scene's"
+    );
+    assert_ne!(pixels, unedited);
+
+    // an edit of an object the scene does not have is refused, naming the file
+    let mut wrong = sidecar.clone();
+    wrong.edits.objects[0].object = 999;
+    wrong.save(&json).unwrap();
+    let out = lumiere()
+        .args(["render", "--settings"])
+        .arg(&json)
+        .arg("-o")
+        .arg(&exr)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("edited.json") && stderr.contains("object 999"),
+        "{stderr}"
+    );
 }
 
 /// Rays are filed under the lowest selected term they serve: an L2-only

@@ -188,27 +188,7 @@ impl LumiereApp {
 
     /// The material of `object`, made its own first (a copy if other objects share it).
     pub fn own_material(&mut self, object: u32) -> &mut Material {
-        let scene = Arc::make_mut(&mut self.scene);
-        let current = scene.objects[object as usize].material;
-        let shared = scene
-            .objects
-            .iter()
-            .enumerate()
-            .any(|(i, o)| i as u32 != object && o.material == current);
-        let material = if shared {
-            let mut copy = scene.materials[current as usize].clone();
-            copy.name = format!("{} ({})", copy.name, scene.objects[object as usize].name);
-            let id = scene.add_material(copy);
-            scene.objects[object as usize].material = id;
-            let range = scene.objects[object as usize].triangles.clone();
-            for t in &mut scene.triangles[range.start as usize..range.end as usize] {
-                t.material = id;
-            }
-            id
-        } else {
-            current
-        };
-        &mut scene.materials[material as usize]
+        Arc::make_mut(&mut self.scene).own_material(object)
     }
 }
 

@@ -367,6 +367,14 @@ impl LumiereApp {
         }
     }
 
+    /// What the viewer changed in the scene since it was loaded (nothing if
+    /// its file can no longer be read).
+    pub fn scene_edits(&self) -> crate::scene::edits::SceneEdits {
+        builtin::load(&self.scene_spec)
+            .map(|original| crate::scene::edits::SceneEdits::between(&original, &self.scene))
+            .unwrap_or_default()
+    }
+
     /// Every setting back to its default (the film's size too), the scene
     /// reloaded from its file without its per-object and per-light edits,
     /// the camera back to the scene's, the lesson closed.
@@ -492,6 +500,7 @@ impl LumiereApp {
                 settings: self.state.settings.clone(),
                 display: self.state.display,
                 samples_per_pixel: 0,
+                edits: self.scene_edits(),
             },
         };
         self.exports.push(std::thread::spawn(move || job.run()));

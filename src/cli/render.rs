@@ -45,6 +45,8 @@ pub struct RenderArgs {
 /// What a render does, from the options or from a sidecar.
 struct RenderJob {
     scene: String,
+    /// What the viewer changed in the scene (from a sidecar).
+    edits: lumiere::scene::edits::SceneEdits,
     camera: Option<Camera>,
     settings: RenderSettings,
     display: DisplaySettings,
@@ -59,6 +61,7 @@ impl RenderJob {
         let Some(path) = &args.settings else {
             return Ok(Self {
                 scene: args.scene.clone().unwrap_or_else(|| "cornell".into()),
+                edits: Default::default(),
                 camera: None,
                 settings: args.options.settings(),
                 display: args.options.display(),
@@ -69,6 +72,7 @@ impl RenderJob {
         let spp = args.spp.unwrap_or(sidecar.samples_per_pixel.max(1));
         Ok(Self {
             scene: args.scene.clone().unwrap_or(sidecar.scene),
+            edits: sidecar.edits,
             camera: Some(sidecar.camera),
             settings: sidecar.settings,
             display: sidecar.display,
@@ -96,7 +100,12 @@ fn check(output: &Path, job: Result<RenderJob, Failure>) -> Result<RenderJob, Fa
 pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let job = check(&args.output, RenderJob::from_args(args))?;
     let settings = job.settings.clone();
-    let scene = load_scene(&job.scene)?;
+    let mut scene = load_scene(&job.scene)?;
+    if let Some(path) = &args.settings {
+        job.edits
+            .apply(&mut scene)
+            .map_err(|e| Failure::runtime(anyhow::anyhow!("{}: {e}", path.display())))?;
+    }
     let pool = worker_pool(args.threads)?;
     let (film, stats, continuations) = pool.install(|| {
         let mut context = RenderContext::with_camera(scene, settings.clone(), job.camera.as_ref());

@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::render::settings::{DisplaySettings, RenderSettings};
 use crate::scene::Camera;
+use crate::scene::edits::SceneEdits;
 
 /// Every setting of a screenshot.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -19,6 +20,9 @@ pub struct Sidecar {
     pub display: DisplaySettings,
     /// Samples per pixel of the image (the fewest among its terms).
     pub samples_per_pixel: u32,
+    /// What the viewer changed in the scene (materials, lights' strengths).
+    #[serde(default, skip_serializing_if = "SceneEdits::is_empty")]
+    pub edits: SceneEdits,
 }
 
 /// A sidecar that could not be read or written.

@@ -11,6 +11,7 @@
 //! in W·m⁻²·sr⁻¹, radiant intensity in W·sr⁻¹, irradiance in W·m⁻².
 
 pub mod builtin;
+pub mod edits;
 pub mod error;
 pub mod gltf;
 pub mod texture;
