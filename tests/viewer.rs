@@ -621,3 +621,38 @@ fn light_units_follow_the_light_mode_and_the_power_stays() {
     harness.get_by_label(&format!("{} (I, W/sr)", light.name));
     harness.get_by_label(&power);
 }
+
+/// Automatic exposure shows the image's mean luminance Ȳ as mid-grey:
+/// L2 alone, dark at 0 EV, gets log₂(0.18 / Ȳ), several stops up.
+#[test]
+fn auto_exposure_brings_l2_alone_to_mid_grey() {
+    let mut harness = harness();
+    harness.get_by_label("L0").click();
+    harness.get_by_label("L1").click();
+    harness.get_by_label("auto EV").click();
+    harness.run_steps(2);
+    assert!(harness.state().state.auto_exposure);
+    let shown = wait_for(&mut harness, "8 spp of L2 alone", |s| {
+        s.terms == lumiere::TermSet::only(Term::L2) && s.samples_per_pixel() >= 8
+    });
+    harness.run_steps(2);
+    let shown = if harness.state().snapshot().generation == shown.generation {
+        shown
+    } else {
+        (*harness.state().snapshot()).clone()
+    };
+    let mean = shown
+        .radiance
+        .iter()
+        .map(|p| lumiere::render::color::luminance(glam::Vec3::new(p[0], p[1], p[2])) as f64)
+        .sum::<f64>()
+        / shown.radiance.len() as f64;
+    let expected = (0.18 / mean).log2() as f32;
+    let exposure = harness.state().state.display.exposure;
+    // rounded to a tenth of a stop
+    assert!(
+        (exposure - expected).abs() <= 0.05 + 1e-4,
+        "{exposure} EV, expected {expected}"
+    );
+    assert!(exposure > 2.0, "L2 alone needs several stops: {exposure}");
+}

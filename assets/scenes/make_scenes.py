@@ -366,7 +366,7 @@ class Gltf:
         for key in ("materials", "cameras"):
             if not self.doc[key]:
                 del self.doc[key]
-        path = os.path.join(HERE, filename)
+        path = filename if os.path.isabs(filename) else os.path.join(HERE, filename)
         with open(path, "w") as f:
             json.dump(self.doc, f, indent=1)
             f.write("\n")
@@ -377,7 +377,7 @@ class Gltf:
 # 1. Veach's MIS scene
 
 
-def veach_mis():
+def veach_mis(exponents=(10000.0, 1000.0, 100.0, 10.0), filename="veach-mis.gltf"):
     """Veach's thesis figure 9.2 (multiple importance sampling), in the layout of
     the widely used re-creation by Steve Marschner (CS667), later in Mitsuba's and
     Bitterli's test scenes: four 8-unit plates, four sphere lights at y = 0,
@@ -403,7 +403,6 @@ def veach_mis():
         ((-3.99615, 4.0667), (-3.82069, 3.08221)),
     ]
     # farthest (top of the picture) sharpest, nearest (bottom) roughest, as in Veach's figure
-    exponents = [10000.0, 1000.0, 100.0, 10.0]
     base = [0.8, 0.8, 0.8]
     camera_eye = [0.0, 2.0 * S, 15.0 * S]
     for k, ((ya, za), (yb, zb)) in enumerate(plates):
@@ -489,7 +488,7 @@ def veach_mis():
     hfov = math.radians(41.0108)
     yfov = 2.0 * math.atan(math.tan(hfov / 2.0) / aspect)
     g.camera("camera", camera_eye, [0.0, -2.0 * S, 2.5 * S], yfov, aspect)
-    g.write("veach-mis.gltf")
+    g.write(filename)
 
 
 # --------------------------------------------------------------------------
@@ -506,7 +505,7 @@ def penumbra():
     )
     white = g.material("white floor", [0.8, 0.8, 0.8])
     grey = g.material("grey occluder", [0.5, 0.5, 0.5])
-    g.mesh("floor", Geometry().rect([0.0, 0.0, 0.0], [3.0, 0.0, 0.0], [0.0, 0.0, -3.0]), white)
+    g.mesh("floor", Geometry().rect([0.0, 0.0, 0.0], [5.0, 0.0, 0.0], [0.0, 0.0, -5.0]), white)
     # occluder: a 0.4 m cube on a 4 cm post, its top at 1.2 m
     cube = Geometry().box([-0.2, 0.8, -0.2], [0.2, 1.2, 0.2])
     post = Geometry().box([-0.02, 0.0, -0.02], [0.02, 0.8, 0.02], skip=("-y", "+y"))
@@ -515,7 +514,7 @@ def penumbra():
     # light: 0.5 m square at 2.4 m, to the left and behind, facing down
     size = 0.5
     center = [-0.8, 2.4, -0.6]
-    radiance = 40.0
+    radiance = 50.0
     light = g.material("area light", [0.0, 0.0, 0.0], emission=[radiance] * 3)
     g.mesh(
         "area light (0.5 m square, facing down)",
@@ -526,7 +525,7 @@ def penumbra():
         "emissive square %.2f m on a side at %s, facing -y, radiance %g W/m^2/sr: power pi A L = %.2f W"
         % (size, center, radiance, math.pi * size * size * radiance)
     )
-    g.camera("camera", [0.9, 1.9, 3.4], [0.55, 0.35, 0.0], math.radians(45.0), 4.0 / 3.0)
+    g.camera("camera", [2.4, 1.9, 3.6], [0.25, 0.45, 0.1], math.radians(42.0), 4.0 / 3.0)
     g.write("penumbra.gltf")
 
 
@@ -534,37 +533,14 @@ def penumbra():
 # 3. indirect room
 
 
-def wall_with_hole(corners, hole):
-    """Rectangle corners p0..p3 (counter-clockwise from the front) in the plane
-    with a rectangular hole given by parameters (u0, u1, v0, v1) in [0, 1]
-    along p0->p1 and p0->p3."""
-    p0, p1, _, p3 = corners
-    eu = sub(p1, p0)
-    ev = sub(p3, p0)
-
-    def at(u, v):
-        return add(p0, add(mul(eu, u), mul(ev, v)))
-
-    u0, u1, v0, v1 = hole
-    g = Geometry()
-    for (a, b, c, d) in [
-        (0.0, 1.0, 0.0, v0),  # below
-        (0.0, 1.0, v1, 1.0),  # above
-        (0.0, u0, v0, v1),  # left
-        (u1, 1.0, v0, v1),  # right
-    ]:
-        g.quad(at(a, c), at(b, c), at(b, d), at(a, d))
-    return g
-
-
 def indirect_room():
-    # room x in [-2, 2], y in [0, 2.6], z in [-3, 3]; camera near the front wall z = 3
+    # room x in [-2, 2], y in [0, 2.6], z in [-3, 3]; the camera near the front wall z = 3
     X, Y, Z = 2.0, 2.6, 3.0
     g = Gltf(
         "Indirect room",
         {
-            "title": "A closed room lit by a lamp hidden in an alcove behind the camera",
-            "lesson": "the lamp faces into the alcove in the front wall (behind the camera): the only surfaces it lights directly are the alcove's, which no visible surface can see past the lamp's plane, so L1 is black on every visible pixel and the picture is L2 (and L3+)",
+            "title": "A closed room lit only by a lamp behind the camera that faces the wall behind the camera",
+            "lesson": "the lamp (one-sided) faces the front wall, behind the camera; every surface the camera sees lies behind the lamp's plane, so L1 is black on every visible pixel and the picture is L2 (light from the front wall, lit directly) and L3+",
         },
     )
     grey = g.material("light grey", [0.7, 0.7, 0.7])
@@ -576,32 +552,34 @@ def indirect_room():
     g.mesh("back wall", Geometry().quad([-X, 0, -Z], [X, 0, -Z], [X, Y, -Z], [-X, Y, -Z]), grey)
     g.mesh("left wall (blue)", Geometry().quad([-X, 0, Z], [-X, 0, -Z], [-X, Y, -Z], [-X, Y, Z]), blue)
     g.mesh("right wall", Geometry().quad([X, 0, -Z], [X, 0, Z], [X, Y, Z], [X, Y, -Z]), grey)
-    # front wall (behind the camera) with the alcove's opening: x in [-0.8, 0.8], y in [1.2, 2.2]
-    ax0, ax1, ay0, ay1, depth = -0.8, 0.8, 1.2, 2.2, 0.6
-    front = wall_with_hole(
-        ([X, 0, Z], [-X, 0, Z], [-X, Y, Z], [X, Y, Z]),
-        ((X - ax1) / (2 * X), (X - ax0) / (2 * X), ay0 / Y, ay1 / Y),
-    )
-    g.mesh("front wall", front, grey)
-    alcove = Geometry().box([ax0, ay0, Z], [ax1, ay1, Z + depth], inward=True, skip=("-z",))
-    g.mesh("alcove", alcove, grey)
-    # the lamp: a 0.5 x 0.4 m panel in the alcove's mouth facing +z (into the alcove)
-    radiance = 150.0
-    lamp_m = g.material("lamp", [0.0, 0.0, 0.0], emission=[radiance, radiance * 0.9, radiance * 0.75])
-    lamp_center = [0.0, 0.5 * (ay0 + ay1), Z + 0.05]
-    lamp = Geometry().rect(lamp_center, [0.25, 0.0, 0.0], [0.0, 0.2, 0.0])
+    g.mesh("front wall (behind the camera)", Geometry().quad([X, 0, Z], [-X, 0, Z], [-X, Y, Z], [X, Y, Z]), grey)
+    # the lamp: a panel facing +z, towards the front wall, behind the camera
+    width, height = LAMP_SIZE
+    radiance = LAMP_RADIANCE
+    colour = [1.0, 0.9, 0.75]
+    lamp_m = g.material("lamp", [0.0, 0.0, 0.0], emission=[radiance * c for c in colour])
+    lamp_center = [0.0, LAMP_HEIGHT, Z - LAMP_GAP]
+    lamp = Geometry().rect(lamp_center, [width / 2, 0.0, 0.0], [0.0, height / 2, 0.0])
     assert lamp.normals[0][2] > 0.99
-    g.mesh("lamp (faces into the alcove)", lamp, lamp_m)
-    # a block on the floor, to cast soft indirect shadows
+    g.mesh("lamp (faces the front wall)", lamp, lamp_m)
+    # blocks on the floor, to cast soft indirect shadows
     g.mesh("block", Geometry().box([-0.9, 0.0, -1.4], [0.1, 0.9, -0.6], skip=("-y",)), grey)
     g.mesh("tall block", Geometry().box([0.6, 0.0, -2.4], [1.3, 1.7, -1.7], skip=("-y",)), grey)
+    eye = [0.0, 1.5, lamp_center[2] - 0.25]
     g.doc["asset"]["extras"]["light"] = (
-        "one-sided emissive panel 0.5 x 0.4 m at z = %.2f facing +z, radiance (%g, %g, %g) W/m^2/sr (power %.0f W), inside an alcove "
-        "x in [%g, %g], y in [%g, %g], z in [%g, %g]; every visible surface lies behind the panel's plane"
-        % (lamp_center[2], radiance, radiance * 0.9, radiance * 0.75, math.pi * 0.2 * radiance, ax0, ax1, ay0, ay1, Z, Z + depth)
+        "one-sided emissive panel %g x %g m centred at %s, facing +z (the front wall, %g m away), radiance (%s) W/m^2/sr, "
+        "power pi A L = %.0f W (of the red channel); the camera at z = %g looks towards -z, so every surface it sees lies behind the panel's plane"
+        % (width, height, lamp_center, LAMP_GAP, ", ".join("%g" % (radiance * c) for c in colour),
+           math.pi * width * height * radiance, eye[2])
     )
-    g.camera("camera", [0.0, 1.5, Z - 0.4], [0.0, 1.0, -Z], math.radians(60.0), 4.0 / 3.0)
+    g.camera("camera", eye, [0.0, 1.0, -Z], math.radians(60.0), 4.0 / 3.0)
     g.write("indirect-room.gltf")
+
+
+LAMP_SIZE = (1.2, 0.6)
+LAMP_RADIANCE = 120.0
+LAMP_HEIGHT = 1.8
+LAMP_GAP = 0.35
 
 
 # --------------------------------------------------------------------------

@@ -103,6 +103,9 @@ pub struct Persisted {
     pub noise: NoiseView,
     /// The size of the interface (egui's zoom factor), for a projector.
     pub ui_scale: f32,
+    /// Set the exposure from each new image: its mean luminance shown as
+    /// mid-grey (a dim term such as L2 alone becomes visible).
+    pub auto_exposure: bool,
 }
 
 impl Default for Persisted {
@@ -115,6 +118,7 @@ impl Default for Persisted {
             export_dir: ".".into(),
             noise: NoiseView::default(),
             ui_scale: 1.0,
+            auto_exposure: false,
         }
     }
 }
@@ -547,6 +551,11 @@ impl eframe::App for LumiereApp {
         panels::shortcuts(self, &ctx);
         lesson_view::shortcuts(self, &ctx);
         let snapshot = self.snapshot();
+        if self.state.auto_exposure
+            && let Some(exposure) = auto_exposure(&snapshot)
+        {
+            self.state.display.exposure = exposure;
+        }
         reference::poll_capture(self);
         let serial = self.renderer_serial;
         reference::measure(self, reference::Side::A, serial, &snapshot);
@@ -581,6 +590,24 @@ impl eframe::App for LumiereApp {
             eframe::set_value(storage, STORAGE_KEY, &self.state);
         }
     }
+}
+
+/// The exposure (EV) that shows `snapshot`'s mean luminance Ȳ as mid-grey:
+/// log₂(0.18 / Ȳ), to a tenth of a stop (so that noise does not make it
+/// flicker), within the slider's ±10; none for a black image.
+fn auto_exposure(snapshot: &Snapshot) -> Option<f32> {
+    if snapshot.radiance.is_empty() {
+        return None;
+    }
+    let mean = snapshot
+        .radiance
+        .iter()
+        .map(|p| crate::render::color::luminance(glam::Vec3::new(p[0], p[1], p[2])) as f64)
+        .sum::<f64>()
+        / snapshot.radiance.len() as f64;
+    (mean > 0.0)
+        .then(|| ((0.18 / mean).log2() as f32 * 10.0).round() / 10.0)
+        .map(|ev| ev.clamp(-10.0, 10.0))
 }
 
 /// egui's fonts, then DejaVu Sans for what they lack: the lessons' formulas

@@ -505,8 +505,16 @@ fn display_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             })
             .response
             .on_hover_text("Screen pixels per film pixel (nearest neighbour); Shift+drag pans");
+            let auto = app.state.auto_exposure;
             let display = &mut app.state.display;
-            ui.add(egui::Slider::new(&mut display.exposure, -10.0..=10.0).text("exposure (EV)"));
+            ui.horizontal(|ui| {
+                ui.add_enabled(
+                    !auto,
+                    egui::Slider::new(&mut display.exposure, -10.0..=10.0).text("exposure (EV)"),
+                );
+                ui.checkbox(&mut app.state.auto_exposure, "auto EV")
+                    .on_hover_text("Set the exposure from the image: its mean luminance shown as mid-grey (L2 alone is dark)");
+            });
             egui::ComboBox::from_label("tonemap")
                 .selected_text(display.tonemap.label())
                 .show_ui(ui, |ui| {
