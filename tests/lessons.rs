@@ -2,6 +2,8 @@
 //! broken lesson file is refused with its line and field; `lumiere lessons`
 //! lists the lessons and scenes; the viewer refuses a lesson it cannot open.
 
+mod common;
+
 use std::process::Command;
 
 use lumiere::lesson::{Lang, Lesson};
@@ -176,4 +178,34 @@ fn the_documented_example_is_a_valid_lesson() {
     let point = lesson.view(1, 64, 48).unwrap();
     assert_eq!(point.settings.light_mode, LightMode::Point);
     assert_eq!(point.settings.terms, TermSet::only(Term::L1));
+}
+
+/// Every scene of the library loads by name and renders without invalid
+/// samples; `indirect-room` is what its name says: its lamp lights no
+/// visible surface, so L1 is black and L2 carries the picture.
+#[test]
+fn the_scene_library_loads_by_name_and_renders() {
+    for scene in &lumiere::scene::builtin::SCENES {
+        let loaded = lumiere::scene::builtin::load(scene.name)
+            .unwrap_or_else(|e| panic!("{}: {e}", scene.name));
+        assert!(
+            loaded.warnings.is_empty(),
+            "{}: {:?}",
+            scene.name,
+            loaded.warnings
+        );
+        let film = common::render_film(loaded, &common::small(32, 24, TermSet::ALL), 4);
+        assert!(
+            film.radiance(TermSet::ALL)
+                .iter()
+                .any(|p| p.max_element() > 0.0),
+            "{}: black",
+            scene.name
+        );
+    }
+    let room = lumiere::scene::builtin::load("indirect-room").unwrap();
+    let film = common::render_film(room, &common::small(32, 24, TermSet::COURSE), 16);
+    let (l1, _) = common::mean_and_error(&film, Term::L1);
+    let (l2, _) = common::mean_and_error(&film, Term::L2);
+    assert!(l1 == 0.0 && l2 > 0.0, "indirect-room: L1 {l1}, L2 {l2}");
 }

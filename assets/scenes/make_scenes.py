@@ -17,7 +17,7 @@ Conventions (docs: /work/shared/course/COURSE.md, lumiere's loader):
 Scenes:
 * veach-mis.gltf      Veach's multiple-importance-sampling test picture
 * penumbra.gltf       an occluder on a post under a square area light
-* indirect-room.gltf  a closed room lit only through one indirect bounce
+* indirect-room.gltf  a closed room whose visible surfaces get no direct light
 * cornell-{point,spot,mirror,glossy}.gltf  copies of tests/data/ variants
 """
 
@@ -377,8 +377,16 @@ class Gltf:
 # 1. Veach's MIS scene
 
 
-def veach_mis(exponents=(10000.0, 1000.0, 100.0, 10.0), filename="veach-mis.gltf"):
-    """Veach's thesis figure 9.2 (multiple importance sampling), in the layout of
+# Phong exponents of the plates, farthest (top of the picture) first. With
+# n = 10000, 1000, 100, 10 the nearest plate's lobe (n = 10) is wider than the
+# lights' spacing and shows one even band instead of four highlights; a decade
+# higher, every plate shows four highlights, as in Veach's figure.
+# veach_mis((1e4, 1e3, 1e2, 10.0)) gives the other set.
+VEACH_EXPONENTS = (100000.0, 10000.0, 1000.0, 100.0)
+
+
+def veach_mis(exponents=VEACH_EXPONENTS, filename="veach-mis.gltf"):
+    """Veach's glossy-plates picture (thesis, chapter 9, multiple importance sampling), in the layout of
     the widely used re-creation by Steve Marschner (CS667), later in Mitsuba's and
     Bitterli's test scenes: four 8-unit plates, four sphere lights at y = 0,
     z = 0, x = -3.75 .. 3.75, radii 1/30 .. 0.9 in steps of x3, radiance ~ 1/r^2,
@@ -390,13 +398,14 @@ def veach_mis(exponents=(10000.0, 1000.0, 100.0, 10.0), filename="veach-mis.gltf
         {
             "title": "Veach's multiple importance sampling test: four glossy plates, four sphere lights of equal power",
             "sources": {
-                "layout": "E. Veach, Robust Monte Carlo Methods for Light Transport Simulation, PhD thesis, 1997, figure 9.2; coordinates of the common re-creation (Marschner, CS667; Mitsuba and Bitterli test scenes) scaled by 0.25 to metres",
+                "layout": "E. Veach, Robust Monte Carlo Methods for Light Transport Simulation, PhD thesis, Stanford, 1997, chapter 9 (multiple importance sampling), the glossy plates figure; coordinates of the common re-creation (Marschner, CS667; Mitsuba and Bitterli test scenes) scaled by 0.25 to metres",
             },
         },
     )
-    # plates: each from its near edge to its far edge (Veach units), x in [-4, 4]
+    # plates: (y, z) of their two long edges (Veach units), x in [-4, 4]
     plates = [
-        # (far edge y, z), (near edge y, z): farthest plate first
+        # farthest plate first; each plate's normal is the half vector between
+        # the directions to the camera and to the row of lights
         ((-2.70651, 0.25609), (-2.08375, -0.526323)),
         ((-3.28825, 1.36972), (-2.83856, 0.476536)),
         ((-3.73096, 2.70046), (-3.43378, 1.74564)),
@@ -440,7 +449,7 @@ def veach_mis(exponents=(10000.0, 1000.0, 100.0, 10.0), filename="veach-mis.gltf
     # four sphere lights of equal power: Phi = pi * A * L, A the same multiple of r^2
     radii = [1.0 / 30.0, 0.1, 0.3, 0.9]
     xs = [-3.75, -1.25, 1.25, 3.75]
-    radiance_r2 = 1.0  # L r^2 in Veach units (Veach: 901.803 at r = 0.03333, 100 at r = 0.1, ...)
+    radiance_r2 = 1.0  # L r^2 with r in Veach's units (901.803 at r = 0.03333, 100 at r = 0.1, ...)
     powers = []
     for k in range(4):
         r = radii[k] * S
@@ -456,13 +465,14 @@ def veach_mis(exponents=(10000.0, 1000.0, 100.0, 10.0), filename="veach-mis.gltf
         g.mesh("sphere light %d (r = %.4g m)" % (k + 1, r), sphere, material)
     assert max(powers) / min(powers) - 1.0 < 1e-9
     g.doc["asset"]["extras"]["lights"] = (
-        "emissive UV spheres (32 x 16), radii %s m, radiance L = %s W/m^2/sr (L r^2 = %g W/sr in Veach's units), "
-        "so each emits Phi = pi A L = %.4f W (A the tessellated area, 0.987 of 4 pi r^2); one-sided, facing out"
+        "emissive UV spheres (32 x 16), radii %s m, radiance L = %s W/m^2/sr (L r^2 = %g with r in Veach's units), "
+        "so each emits Phi = pi A L = %.4f W (A the tessellated area, %.4f of 4 pi r^2); one-sided, facing out"
         % (
             ", ".join("%.5g" % (r * S) for r in radii),
             ", ".join("%.6g" % (radiance_r2 / r**2) for r in radii),
             radiance_r2,
             powers[0],
+            area / (4.0 * math.pi * r * r),
         )
     )
 
@@ -500,7 +510,7 @@ def penumbra():
         "Penumbra",
         {
             "title": "A cube on a thin post above a white floor, under one square area light: umbra and penumbra",
-            "lesson": "penumbra width = light size x (occluder-to-floor distance) / (light-to-occluder distance): it grows with the light (the light-radius slider; --lights point gives the hard shadow) and along the post, away from where it meets the floor",
+            "lesson": "penumbra width = light size x (occluder-to-floor distance) / (light-to-occluder distance): it grows with the light's size (--lights point, the light collapsed to a point of the same power, gives the hard shadow) and along the post, away from where it meets the floor",
         },
     )
     white = g.material("white floor", [0.8, 0.8, 0.8])
@@ -576,10 +586,10 @@ def indirect_room():
     g.write("indirect-room.gltf")
 
 
-LAMP_SIZE = (1.2, 0.6)
-LAMP_RADIANCE = 120.0
-LAMP_HEIGHT = 1.8
-LAMP_GAP = 0.35
+LAMP_SIZE = (0.6, 0.4)
+LAMP_RADIANCE = 300.0
+LAMP_HEIGHT = 1.7
+LAMP_GAP = 0.8
 
 
 # --------------------------------------------------------------------------

@@ -656,6 +656,28 @@ fn scene_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 app.scene.triangles.len(),
                 app.scene.lights.len()
             ));
+            let mut chosen = None;
+            egui::ComboBox::from_label("built-in")
+                .selected_text(app.scene_spec.as_str())
+                .show_ui(ui, |ui| {
+                    for scene in &crate::scene::builtin::SCENES {
+                        let current = app.scene_spec == scene.name;
+                        if ui
+                            .selectable_label(current, scene.name)
+                            .on_hover_text(scene.description)
+                            .clicked()
+                        {
+                            chosen = Some(scene.name);
+                        }
+                    }
+                })
+                .response
+                .on_hover_text(
+                    "The scene library: the Cornell box, its variants, one scene per lesson",
+                );
+            if let Some(name) = chosen {
+                app.load_scene(name);
+            }
             ui.horizontal(|ui| {
                 let label = ui.label("file");
                 let field = ui

@@ -24,7 +24,7 @@ use super::{Failure, check_settings, worker_pool};
 /// The arguments of `lumiere bench`.
 #[derive(Args)]
 pub struct BenchArgs {
-    /// A .gltf/.glb file, or `cornell` (the built-in Cornell box, the default).
+    /// A .gltf/.glb file, or a built-in scene: `cornell` (the default) or another `lumiere lessons` lists.
     #[arg(default_value = "cornell")]
     scene: String,
     /// Folder of the CSV files, plots and cached reference.

@@ -30,8 +30,8 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
         }
     }
     println!("scenes (lumiere view SCENE, lumiere render SCENE):");
-    for (name, description) in builtin::SCENES {
-        println!("  {name:<22} {description}");
+    for scene in &builtin::SCENES {
+        println!("  {:<22} {}", scene.name, scene.description);
     }
     Ok(())
 }

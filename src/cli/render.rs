@@ -21,7 +21,7 @@ use super::{Failure, check_settings, load_scene, progress_bar, summary, update_b
 /// The arguments of `lumiere render`.
 #[derive(Args)]
 pub struct RenderArgs {
-    /// A .gltf/.glb file, or `cornell` (the built-in Cornell box, the default).
+    /// A .gltf/.glb file, or a built-in scene: `cornell` (the default) or another `lumiere lessons` lists.
     scene: Option<String>,
     /// Output image; its extension picks the format (.exr or .png).
     #[arg(short, long)]

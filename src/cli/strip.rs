@@ -17,7 +17,7 @@ use super::{Failure, load_scene, strip_progress_bar, summary, worker_pool};
 /// The arguments of `lumiere strip`.
 #[derive(Args)]
 pub struct StripArgs {
-    /// A .gltf/.glb file, or `cornell` (the built-in Cornell box, the default).
+    /// A .gltf/.glb file, or a built-in scene: `cornell` (the default) or another `lumiere lessons` lists.
     #[arg(default_value = "cornell")]
     scene: String,
     /// Output image: a .png (labels are display pixels; no EXR).

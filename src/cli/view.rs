@@ -16,7 +16,7 @@ use super::parsers::parse_pixel;
 /// The arguments of `lumiere view` (and of `lumiere` without a command).
 #[derive(Parser)]
 pub struct ViewArgs {
-    /// A .gltf/.glb file, or `cornell` (the built-in Cornell box, the default).
+    /// A .gltf/.glb file, or a built-in scene: `cornell` (the default) or another `lumiere lessons` lists.
     #[arg(default_value = "cornell")]
     scene: String,
     /// Render to this many samples per pixel, then exit (saving --screenshot first).

@@ -11,25 +11,75 @@ use crate::scene::error::SceneError;
 /// The Cornell box from the published measurements, in metres.
 pub const CORNELL_GLTF: &[u8] = include_bytes!("../../assets/cornell-box.gltf");
 
-/// Names of the built-in scenes.
-pub const NAMES: [&str; 1] = ["cornell"];
+/// A scene built into lumiere (`assets/`), loadable by name.
+pub struct BuiltinScene {
+    pub name: &'static str,
+    /// What it shows, in one line.
+    pub description: &'static str,
+    gltf: &'static [u8],
+}
 
-/// The built-in scenes and what each shows.
-pub const SCENES: [(&str, &str); 1] = [(
-    "cornell",
-    "the Cornell box: an area light in the ceiling, a red and a green wall, two white blocks",
-)];
+/// The scene library: the Cornell box and its variants, and one scene per
+/// lesson (`assets/scenes/README.md` says how each was made and its licence).
+pub const SCENES: [BuiltinScene; 8] = [
+    BuiltinScene {
+        name: "cornell",
+        description: "the Cornell box: an area light in the ceiling, a red and a green wall, two white blocks",
+        gltf: CORNELL_GLTF,
+    },
+    BuiltinScene {
+        name: "cornell-point",
+        description: "the Cornell box under a point light of the same power: hard shadows",
+        gltf: include_bytes!("../../assets/scenes/cornell-point.gltf"),
+    },
+    BuiltinScene {
+        name: "cornell-spot",
+        description: "the Cornell box under a spot light pointing down: a cone of light",
+        gltf: include_bytes!("../../assets/scenes/cornell-spot.gltf"),
+    },
+    BuiltinScene {
+        name: "cornell-mirror",
+        description: "the Cornell box with a mirror tall block",
+        gltf: include_bytes!("../../assets/scenes/cornell-mirror.gltf"),
+    },
+    BuiltinScene {
+        name: "cornell-glossy",
+        description: "the Cornell box with a glossy floor and a glossy metal block (Phong)",
+        gltf: include_bytes!("../../assets/scenes/cornell-glossy.gltf"),
+    },
+    BuiltinScene {
+        name: "veach-mis",
+        description: "four glossy plates, sharp to rough, under four lights of equal power, small to large: light against BRDF sampling",
+        gltf: include_bytes!("../../assets/scenes/veach-mis.gltf"),
+    },
+    BuiltinScene {
+        name: "penumbra",
+        description: "a cube on a post under a square light: umbra and penumbra (hard with --lights point)",
+        gltf: include_bytes!("../../assets/scenes/penumbra.gltf"),
+    },
+    BuiltinScene {
+        name: "indirect-room",
+        description: "a room whose lamp lights no visible surface: L1 is black, L2 carries the picture",
+        gltf: include_bytes!("../../assets/scenes/indirect-room.gltf"),
+    },
+];
+
+/// Whether `spec` names a built-in scene (rather than a file).
+pub fn is_builtin(spec: &str) -> bool {
+    SCENES.iter().any(|s| s.name == spec)
+}
 
 /// The built-in Cornell box.
 pub fn cornell() -> Scene {
     super::gltf::load_slice(CORNELL_GLTF, "cornell", None).expect("the embedded Cornell box loads")
 }
 
-/// A scene by name (`cornell`) or by path to a `.gltf`/`.glb` file.
+/// A scene by name (`cornell`, or another of [`SCENES`]) or by path to a
+/// `.gltf`/`.glb` file.
 pub fn load(spec: &str) -> Result<Scene, SceneError> {
-    match spec {
-        "cornell" => Ok(cornell()),
-        path => super::gltf::load(Path::new(path)),
+    match SCENES.iter().find(|s| s.name == spec) {
+        Some(builtin) => super::gltf::load_slice(builtin.gltf, builtin.name, None),
+        None => super::gltf::load(Path::new(spec)),
     }
 }
 

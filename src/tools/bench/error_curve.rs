@@ -267,7 +267,7 @@ pub fn summarize(rows: &[ErrorRow]) -> Vec<CurveSummary> {
 
 /// What identifies the scene's content: the built-in name, or a file's path, size and modification time.
 fn scene_identity(scene: &str) -> String {
-    if builtin::NAMES.contains(&scene) {
+    if builtin::is_builtin(scene) {
         return format!("builtin:{scene}");
     }
     let metadata = std::fs::metadata(scene).ok();
