@@ -183,7 +183,11 @@ fn switching_l2_off_hides_it_without_restarting_the_film() {
     );
 
     // hidden, L2 is no longer rendered; the other terms go on, on the same film
+    // (the worker learns that L2 is off while it is still held at its
+    // sample count, then the hold is lifted: no pass of L2 can slip between)
     harness.get_by_label("L2").click();
+    harness.run_steps(2);
+    wait_for(&mut harness, "L2 off", |s| !s.terms.contains(Term::L2));
     harness.state_mut().state.stop_at_spp = None;
     let more = wait_for(&mut harness, "more samples without L2", |s| {
         !s.terms.contains(Term::L2)
