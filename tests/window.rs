@@ -102,9 +102,15 @@ fn load_rgb(path: &Path) -> image::RgbImage {
         .to_rgb8()
 }
 
-#[test]
-fn viewer_screenshot_matches_the_command_line_render() {
-    let Some(display) = display() else {
+/// The window tests one at a time: each starts its own Xvfb on a display
+/// numbered after the process.
+static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// The display, or `None` after saying on stderr that the test is skipped
+/// (a failure instead with LUMIERE_REQUIRE_DISPLAY, as in CI).
+fn display_or_skip() -> Option<Display> {
+    let display = display();
+    if display.is_none() {
         assert!(
             std::env::var("LUMIERE_REQUIRE_DISPLAY").is_err(),
             "no DISPLAY and no Xvfb: install xvfb (see .ci/run)"
@@ -115,6 +121,127 @@ fn viewer_screenshot_matches_the_command_line_render() {
             std::io::stderr(),
             "\nwindow test SKIPPED: no DISPLAY and no Xvfb on the PATH (install xvfb, see the README)"
         );
+    }
+    display
+}
+
+/// Runs `lumiere view` with `args` on `display` until it saves `shot` and
+/// exits; its stderr.
+fn run_viewer(display: &Display, args: &[&str], shot: &Path) -> String {
+    let runtime_dir = scratch("xdg");
+    std::fs::create_dir_all(&runtime_dir).unwrap();
+    let mut view = lumiere();
+    view.arg("view")
+        .args(args)
+        .arg("--screenshot")
+        .arg(shot)
+        .env("DISPLAY", &display.name)
+        .env("XDG_RUNTIME_DIR", &runtime_dir)
+        .env_remove("WAYLAND_DISPLAY");
+    let output = run_with_limit(view, Duration::from_secs(180));
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    assert!(output.status.success(), "the viewer failed:\n{stderr}");
+    stderr
+}
+
+/// The largest and the mean difference (8-bit levels) between the image
+/// at `rect` [x, y, w, h] of `window` and `expected`, over the film rows
+/// `rows` (sampled at each film pixel's centre).
+fn difference(
+    window: &image::RgbImage,
+    [x, y, w, h]: [u32; 4],
+    expected: &image::RgbImage,
+    rows: std::ops::Range<u32>,
+) -> (i32, f64) {
+    let (mut worst, mut total, mut count) = (0i32, 0i64, 0i64);
+    for j in rows {
+        for i in 0..expected.width() {
+            let sx = x + ((i as f32 + 0.5) * w as f32 / expected.width() as f32) as u32;
+            let sy = y + ((j as f32 + 0.5) * h as f32 / expected.height() as f32) as u32;
+            let shown = window.get_pixel(sx, sy).0;
+            let want = expected.get_pixel(i, j).0;
+            for c in 0..3 {
+                let d = (shown[c] as i32 - want[c] as i32).abs();
+                worst = worst.max(d);
+                total += d as i64;
+                count += 1;
+            }
+        }
+    }
+    (worst, total as f64 / count as f64)
+}
+
+/// The built-in lesson opened on step 3 (L2 alone, +2 EV) in a real window:
+/// between the title band and the caption band the image is what
+/// `lumiere render` gives with the step's settings.
+#[test]
+fn the_lesson_opens_on_a_step_in_a_real_window() {
+    let _alone = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(display) = display_or_skip() else {
+        return;
+    };
+    let shot = scratch("lesson.png");
+    let stderr = run_viewer(
+        &display,
+        &[
+            "--lesson",
+            "simulation-notions",
+            "--step",
+            "3",
+            "--width",
+            "160",
+            "--height",
+            "120",
+            "--exit-after-spp",
+            "8",
+        ],
+        &shot,
+    );
+    let lesson = lumiere::lesson::Lesson::load("simulation-notions").unwrap();
+    let view = lesson.view(2, 160, 120).unwrap();
+    assert_eq!(
+        view.settings.terms,
+        lumiere::TermSet::only(lumiere::Term::L2)
+    );
+    let reference = scratch("lesson-render.png");
+    let render = lumiere()
+        .args(["render", "cornell", "-o"])
+        .arg(&reference)
+        .args([
+            "--width",
+            "160",
+            "--height",
+            "120",
+            "--terms",
+            "L2",
+            "--exposure",
+            "2",
+            "--sampler",
+            "sobol",
+            "--spp",
+            "8",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        render.status.success(),
+        "{}",
+        String::from_utf8_lossy(&render.stderr)
+    );
+    let window = load_rgb(&shot);
+    let expected = load_rgb(&reference);
+    // the middle third of the image, clear of the title and caption bands
+    let (worst, mean) = difference(&window, image_rect(&stderr), &expected, 40..80);
+    assert!(
+        worst <= 2 && mean < 0.5,
+        "the lesson's image differs from the render: worst {worst}/255, mean {mean:.3}"
+    );
+}
+
+#[test]
+fn viewer_screenshot_matches_the_command_line_render() {
+    let _alone = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(display) = display_or_skip() else {
         return;
     };
     let settings = [
