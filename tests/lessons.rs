@@ -76,6 +76,11 @@ fn steps_set_only_what_they_say_over_the_lessons_defaults() {
     assert_eq!(view.spp, 16);
     assert_eq!(view.settings.terms, TermSet::COURSE);
     assert_eq!(view.scene, "cornell");
+    // a probe is written for 640×480 and lands on the same place of any film
+    let probed = one_step("probe = [320, 400]");
+    let lesson = Lesson::parse(&probed, "test.toml").unwrap();
+    assert_eq!(lesson.view(0, 64, 48).unwrap().probe, Some((32, 40)));
+    assert_eq!(lesson.view(0, 640, 480).unwrap().probe, Some((320, 400)));
 }
 
 #[test]

@@ -77,6 +77,19 @@ fn the_clicker_keys_step_through_the_lesson_and_each_step_reaches_the_worker() {
         harness.run_steps(2);
         assert_step_reaches_the_worker(&mut harness, expected);
     }
+    // every step can be shown on this film, one key press each
+    for expected in 1..=last {
+        harness.key_press(egui::Key::ArrowRight);
+        harness.run_steps(1);
+        assert_eq!(
+            harness.state().lesson.step,
+            expected,
+            "{:?}",
+            harness.state().message
+        );
+    }
+    harness.key_press(egui::Key::Home);
+    harness.run_steps(1);
     // past either end, the lesson stays on its first or last step
     harness.key_press(egui::Key::ArrowLeft);
     harness.run_steps(2);

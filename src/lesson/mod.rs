@@ -73,6 +73,10 @@ pub struct Lesson {
     pub steps: Vec<Step>,
 }
 
+/// The image a step's `probe = [x, y]` is written for; on another film the
+/// pixel is scaled to the same place.
+pub const PROBE_FRAME: (u32, u32) = (640, 480);
+
 /// The lessons built into lumiere: (name, TOML text).
 pub const BUILTIN: &[(&str, &str)] = &[(
     "simulation-notions",
@@ -137,25 +141,30 @@ impl Lesson {
                 return Err(fail(format!("{at}: slug used by an earlier step")));
             }
             lesson
-                .view(i, 640, 480)
+                .view(i, PROBE_FRAME.0, PROBE_FRAME.1)
                 .map_err(|e| fail(format!("{at}: {e}")))?;
         }
         Ok(lesson)
     }
 
     /// What step `index` (from 0) shows on a film of `width` × `height`:
-    /// lumiere's defaults, then the lesson's, then the step's.
+    /// lumiere's defaults, then the lesson's, then the step's. A probed
+    /// pixel is given in a 640×480 image ([`PROBE_FRAME`]) and lands on the
+    /// same place of the film.
     pub fn view(&self, index: usize, width: u32, height: u32) -> Result<StepView, String> {
         let mut view = StepView::new(width, height);
         self.defaults.apply(&mut view);
         self.steps[index].settings.apply(&mut view);
         view.settings.validate()?;
-        if let Some((x, y)) = view.probe
-            && (x >= width || y >= height)
-        {
-            return Err(format!(
-                "probe ({x}, {y}) lies outside the {width}×{height} image"
-            ));
+        if let Some((x, y)) = view.probe {
+            let (frame_width, frame_height) = PROBE_FRAME;
+            if x >= frame_width || y >= frame_height {
+                return Err(format!(
+                    "probe ({x}, {y}) lies outside the {frame_width}×{frame_height} image"
+                ));
+            }
+            let scale = |v: u32, from: u32, to: u32| (v as u64 * to as u64 / from as u64) as u32;
+            view.probe = Some((scale(x, frame_width, width), scale(y, frame_height, height)));
         }
         Ok(view)
     }
