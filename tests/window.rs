@@ -255,19 +255,10 @@ fn viewer_screenshot_matches_the_command_line_render() {
         "1",
     ];
     let shot = scratch("window.png");
-    let runtime_dir = scratch("xdg");
-    std::fs::create_dir_all(&runtime_dir).unwrap();
-    let mut view = lumiere();
-    view.args(["view", "cornell"])
-        .args(settings)
-        .args(["--exit-after-spp", "32", "--screenshot"])
-        .arg(&shot)
-        .env("DISPLAY", &display.name)
-        .env("XDG_RUNTIME_DIR", &runtime_dir)
-        .env_remove("WAYLAND_DISPLAY");
-    let output = run_with_limit(view, Duration::from_secs(180));
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(output.status.success(), "the viewer failed:\n{stderr}");
+    let mut args = vec!["cornell"];
+    args.extend(settings);
+    args.extend(["--exit-after-spp", "32"]);
+    let stderr = run_viewer(&display, &args, &shot);
 
     let reference = scratch("render.png");
     let render = lumiere()
@@ -295,22 +286,8 @@ fn viewer_screenshot_matches_the_command_line_render() {
         "the side panel is missing"
     );
 
-    // sample the displayed image at each film pixel's centre
-    let (mut worst, mut total) = (0i32, 0i64);
-    for j in 0..expected.height() {
-        for i in 0..expected.width() {
-            let sx = x + ((i as f32 + 0.5) * w as f32 / expected.width() as f32) as u32;
-            let sy = y + ((j as f32 + 0.5) * h as f32 / expected.height() as f32) as u32;
-            let shown = window.get_pixel(sx, sy).0;
-            let want = expected.get_pixel(i, j).0;
-            for c in 0..3 {
-                let d = (shown[c] as i32 - want[c] as i32).abs();
-                worst = worst.max(d);
-                total += d as i64;
-            }
-        }
-    }
-    let mean = total as f64 / (expected.width() * expected.height() * 3) as f64;
+    // the displayed image at each film pixel's centre
+    let (worst, mean) = difference(&window, [x, y, w, h], &expected, 0..expected.height());
     // the same radiance goes through the shader's 8-bit sRGB encoding and the
     // export's: the two may round a channel to neighbouring levels (1), and
     // a texel sampled at a pixel's edge may blend with its neighbour (2 at
