@@ -84,15 +84,20 @@ fn half_furnace(_: LightMode) -> [Option<f64>; Term::COUNT] {
     furnace_terms(0.5, 1.0, 16).map(Some)
 }
 
-fn setup(case: Case, effort: Effort) -> Setup {
+/// The settings every render case starts from: all terms, 16 bounces.
+fn case_settings(effort: Effort) -> RenderSettings {
     let (width, height, _) = film_size(effort);
-    let settings = RenderSettings {
+    RenderSettings {
         width,
         height,
         terms: TermSet::ALL,
         max_bounces: 16,
         ..RenderSettings::default()
-    };
+    }
+}
+
+fn setup(case: Case, effort: Effort) -> Setup {
+    let settings = case_settings(effort);
     let furnace = |radius: f32, centre: Vec3| Setup {
         scene: furnace_scene(radius, centre, glowing_wall(0.5, 1.0), 48, 24),
         settings: settings.clone(),
@@ -352,14 +357,7 @@ pub fn case_scene(case: Case, effort: Effort) -> Option<(Scene, RenderSettings)>
 /// The scenes of a render case: the scale cases also put a point light in a
 /// sphere of their size and place, for the light modes.
 fn setups(case: Case, effort: Effort) -> Vec<Setup> {
-    let (width, height, _) = film_size(effort);
-    let settings = RenderSettings {
-        width,
-        height,
-        terms: TermSet::ALL,
-        max_bounces: 16,
-        ..RenderSettings::default()
-    };
+    let settings = case_settings(effort);
     let point = |radius: f32, centre: Vec3| point_in_sphere(&settings, radius, centre, 1);
     let mut list = vec![setup(case, effort)];
     match case {
