@@ -126,9 +126,25 @@ pub fn show_step(app: &mut LumiereApp, index: usize) {
             return;
         }
     };
+    let fail = |app: &mut LumiereApp, e: &dyn std::fmt::Display| {
+        app.message = Some(format!("error: step {}: {e}", index + 1));
+    };
+    // the step's scene, checked with its sources before anything changes
+    let new_scene = if view.scene != app.scene_spec {
+        match crate::scene::builtin::load(&view.scene) {
+            Ok(scene) => Some(scene),
+            Err(e) => return fail(app, &e),
+        }
+    } else {
+        None
+    };
+    let scene = new_scene.as_ref().unwrap_or(&app.scene);
+    if let Err(e) = crate::transport::sources::check(&view.settings, scene) {
+        return fail(app, &format!("{}: {e}", view.scene));
+    }
     app.lesson.step = index;
-    if view.scene != app.scene_spec {
-        app.load_scene(&view.scene);
+    if let Some(scene) = new_scene {
+        app.show_scene(&view.scene, scene);
     }
     app.state.settings = view.settings;
     app.state.display = view.display;

@@ -15,6 +15,7 @@ pub mod noise_view;
 mod panels;
 pub mod probe_view;
 pub mod reference;
+mod source_quality;
 pub mod split;
 
 use std::path::PathBuf;
@@ -179,6 +180,18 @@ pub struct LumiereApp {
     emitter_areas: (usize, Vec<f32>),
 }
 
+/// Forgets the qualities `settings` give sources `scene` does not have
+/// (those of a scene shown before).
+fn keep_sources_of(settings: &mut crate::render::settings::RenderSettings, scene: &Scene) {
+    let names: Vec<&str> = crate::transport::sources::sources(scene)
+        .into_iter()
+        .map(|key| key.name(scene))
+        .collect();
+    settings
+        .sources
+        .retain(|quality| names.contains(&quality.name.as_str()));
+}
+
 impl LumiereApp {
     /// Creates the app: loads the scene, installs the GPU blit, starts the worker.
     pub fn new(cc: &eframe::CreationContext<'_>, options: ViewOptions) -> Result<Self, String> {
@@ -204,6 +217,9 @@ impl LumiereApp {
         }
         install_fonts(&cc.egui_ctx);
         let scene = Arc::new(builtin::load(&options.scene).map_err(|e| e.to_string())?);
+        crate::transport::sources::check(&options.settings, &scene)
+            .map_err(|e| format!("{}: {e}", options.scene))?;
+        keep_sources_of(&mut state.settings, &scene);
         let camera = scene.default_camera();
         let ctx = cc.egui_ctx.clone();
         let request = ViewRequest {
@@ -355,20 +371,24 @@ impl LumiereApp {
     /// Replaces the scene by the one at `spec`; on failure keeps the current one.
     pub fn load_scene(&mut self, spec: &str) {
         match builtin::load(spec) {
-            Ok(scene) => {
-                self.message = Some(match scene.warnings.first() {
-                    Some(w) => format!("loaded {spec} (warning: {w})"),
-                    None => format!("loaded {spec}"),
-                });
-                self.camera = scene.default_camera();
-                self.orbit = interact::Orbit::default();
-                self.selected = None;
-                self.scene = Arc::new(scene);
-                self.scene_spec = spec.to_string();
-                self.scene_field = spec.to_string();
-            }
+            Ok(scene) => self.show_scene(spec, scene),
             Err(e) => self.message = Some(format!("error: {e}")),
         }
+    }
+
+    /// Shows `scene`, loaded from `spec`, through its own camera.
+    pub fn show_scene(&mut self, spec: &str, scene: Scene) {
+        self.message = Some(match scene.warnings.first() {
+            Some(w) => format!("loaded {spec} (warning: {w})"),
+            None => format!("loaded {spec}"),
+        });
+        self.camera = scene.default_camera();
+        self.orbit = interact::Orbit::default();
+        self.selected = None;
+        keep_sources_of(&mut self.state.settings, &scene);
+        self.scene = Arc::new(scene);
+        self.scene_spec = spec.to_string();
+        self.scene_field = spec.to_string();
     }
 
     /// What the viewer changed in the scene since it was loaded (nothing if

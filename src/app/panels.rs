@@ -233,6 +233,7 @@ fn lights_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
         }
         ui.label(egui::RichText::new("power of each light").weak().small());
         interact::light_power_ui(app, ui);
+        super::source_quality::source_quality_ui(app, ui);
     });
 }
 

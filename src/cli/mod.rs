@@ -69,6 +69,13 @@ pub fn check_settings(settings: &RenderSettings, terms: TermSet) -> Result<(), F
     Film::check_memory(settings.width, settings.height, terms).map_err(Failure::usage)
 }
 
+/// Checks that the sources `settings` give a quality name sources of
+/// `scene`, loaded from `name`.
+pub fn check_sources(settings: &RenderSettings, scene: &Scene, name: &str) -> Result<(), Failure> {
+    lumiere::transport::sources::check(settings, scene)
+        .map_err(|e| Failure::usage_message(format_args!("{name}: {e}")))
+}
+
 /// Loads a scene file or built-in scene by name, printing its warnings.
 pub fn load_scene(name: &str) -> Result<Scene, Failure> {
     let scene = builtin::load(name).map_err(Failure::runtime)?;

@@ -4,13 +4,13 @@ use clap::Args;
 
 use lumiere::render::settings::{
     Adaptive, DisplaySettings, IndirectSampling, Integrator, LightSampling, LightSelection,
-    MAX_SAMPLES_PER_VERTEX, MisHeuristic, Sampler, Tonemap,
+    MAX_SAMPLES_PER_VERTEX, MisHeuristic, Sampler, SourceQuality, Tonemap,
 };
 use lumiere::{BrdfOverride, LightMode, RenderSettings, TermSet};
 
 use super::parsers::{
     IndirectSamples, parse_adaptive_threshold, parse_exposure, parse_indirect_samples,
-    parse_light_radius, parse_phong_exponent,
+    parse_light_radius, parse_phong_exponent, parse_source_quality,
 };
 
 /// What decides the radiance and its display: shared by `render`, `view` and `strip`.
@@ -63,6 +63,9 @@ pub struct SceneOptions {
     /// How a light is picked: uniform or power.
     #[arg(long, default_value = "power")]
     pub light_selection: LightSelection,
+    /// A quality for each source, repeatable: `NAME=N` gives the source NAME (a light's or an emissive material's name) its own N light samples per vertex, `NAME=off` switches it off (it emits nothing).
+    #[arg(long = "source", value_name = "NAME=N|off", value_parser = parse_source_quality)]
+    pub sources: Vec<SourceQuality>,
     /// Random numbers: independent, stratified (jittered) or sobol (Owen-scrambled).
     #[arg(long, default_value = "independent")]
     pub sampler: Sampler,
@@ -109,6 +112,7 @@ impl SceneOptions {
                 threshold,
                 min_samples: self.adaptive_min_spp,
             }),
+            sources: self.sources.clone(),
             ..RenderSettings::default()
         }
     }

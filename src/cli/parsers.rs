@@ -4,7 +4,7 @@
 use std::ops::{Bound, RangeBounds};
 use std::str::FromStr;
 
-use lumiere::render::settings::MAX_SAMPLES_PER_VERTEX;
+use lumiere::render::settings::{MAX_SAMPLES_PER_VERTEX, SourceQuality};
 
 /// Parses a finite number within `range`; `what` names the value (and its
 /// unit) in the messages, e.g. "exposure in stops must be within -64..=64, not 99".
@@ -128,4 +128,24 @@ pub fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
         .split_once(',')
         .and_then(|(x, y)| Some((x.trim().parse().ok()?, y.trim().parse().ok()?)));
     parsed.ok_or_else(|| format!("'{s}' is not a pixel X,Y"))
+}
+
+/// `--source NAME=N` (N light samples of its own) or `NAME=off`.
+pub fn parse_source_quality(s: &str) -> Result<SourceQuality, String> {
+    let Some((name, value)) = s.rsplit_once('=') else {
+        return Err(format!(
+            "'{s}' must be NAME=N (light samples of the source) or NAME=off"
+        ));
+    };
+    if name.is_empty() {
+        return Err(format!("'{s}' names no source"));
+    }
+    match value {
+        "off" => Ok(SourceQuality::off(name)),
+        _ => {
+            let what = format!("light samples of source '{name}'");
+            let n: u32 = parse_in_range(value, 1.0..=MAX_SAMPLES_PER_VERTEX as f64, &what)?;
+            Ok(SourceQuality::samples(name, n))
+        }
+    }
 }

@@ -16,7 +16,10 @@ use lumiere::{Film, RenderContext, RenderSettings};
 
 use super::options::SceneOptions;
 use super::parsers::parse_seconds;
-use super::{Failure, check_settings, load_scene, progress_bar, summary, update_bar, worker_pool};
+use super::{
+    Failure, check_settings, check_sources, load_scene, progress_bar, summary, update_bar,
+    worker_pool,
+};
 
 /// The arguments of `lumiere render`.
 #[derive(Args)]
@@ -106,6 +109,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
             .apply(&mut scene)
             .map_err(|e| Failure::runtime(anyhow::anyhow!("{}: {e}", path.display())))?;
     }
+    check_sources(&settings, &scene, &job.scene)?;
     let pool = worker_pool(args.threads)?;
     let (film, stats, continuations) = pool.install(|| {
         let mut context = RenderContext::with_camera(scene, settings.clone(), job.camera.as_ref());

@@ -12,7 +12,7 @@ use lumiere::tools::strip::{
 use lumiere::{Film, RenderSettings};
 
 use super::options::SceneOptions;
-use super::{Failure, load_scene, strip_progress_bar, summary, worker_pool};
+use super::{Failure, check_sources, load_scene, strip_progress_bar, summary, worker_pool};
 
 /// The arguments of `lumiere strip`.
 #[derive(Args)]
@@ -88,6 +88,7 @@ pub fn run(args: &StripArgs) -> Result<(), Failure> {
     };
     let layout = check(args, &base, &rows)?;
     let scene = load_scene(&args.scene)?;
+    check_sources(&base, &scene, &args.scene)?;
     let pool = worker_pool(args.threads)?;
     let mut image = StripImage::new(layout);
     let bar = strip_progress_bar(args.spp.max() as u64 * rows.len() as u64);

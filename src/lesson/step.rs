@@ -8,7 +8,7 @@ use serde::{Deserialize, Deserializer};
 use crate::analysis::noise::DisplayMode;
 use crate::render::settings::{
     BrdfOverride, DisplaySettings, IndirectSampling, Integrator, LightMode, LightSampling,
-    MisHeuristic, RenderSettings, Sampler, TermSet, Tonemap,
+    MisHeuristic, RenderSettings, Sampler, SourceQuality, TermSet, Tonemap,
 };
 
 /// Samples per pixel a step stops at, unless it says otherwise.
@@ -52,6 +52,8 @@ pub struct StepSettings {
     pub display: Option<DisplayMode>,
     /// A pixel to probe, [x, y] from the top left: its samples' paths are drawn.
     pub probe: Option<[u32; 2]>,
+    /// A quality for each source: `[{ name = "…", samples = 8 }, { name = "…", on = false }]`.
+    pub sources: Option<Vec<SourceQuality>>,
 }
 
 /// Everything a step shows.
@@ -108,6 +110,7 @@ impl StepSettings {
         set(&mut s.indirect_samples, &self.indirect_samples);
         set(&mut s.sampler, &self.sampler);
         set(&mut s.integrator, &self.integrator);
+        set(&mut s.sources, &self.sources);
         set(&mut view.spp, &self.spp);
         set(&mut view.display.exposure, &self.exposure);
         set(&mut view.display.tonemap, &self.tonemap);

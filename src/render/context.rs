@@ -44,7 +44,8 @@ impl RenderContext {
         settings: RenderSettings,
         camera: Option<&Camera>,
     ) -> Self {
-        let scene = scene.into();
+        // a source switched off emits nothing, in every term
+        let scene = crate::transport::sources::switch_off(scene.into(), &settings);
         let lights = LightTable::build(&scene, &settings);
         let accel = Accel::build(&scene, |t| !lights.is_hidden(t), lights.spheres.clone());
         let camera = match camera {

@@ -561,10 +561,58 @@ pub struct RenderSettings {
     pub sampler: Sampler,
     /// Adaptive sampling, if on; `None` (the default): every pixel gets every pass.
     pub adaptive: Option<Adaptive>,
+    /// A quality for each source: sources switched off, or given their own
+    /// number of light samples. Empty (the default): every source is on and
+    /// `light_selection` shares the `light_samples` among them.
+    pub sources: Vec<SourceQuality>,
 }
 
 /// Most light or indirect samples per vertex a render accepts.
 pub const MAX_SAMPLES_PER_VERTEX: u32 = 256;
+
+/// Most light samples per vertex over all the sources together, with a
+/// quality for each source.
+pub const MAX_SOURCE_SAMPLES_PER_VERTEX: u32 = 4 * MAX_SAMPLES_PER_VERTEX;
+
+/// One light source's quality. A source is named as in the scene: a glTF
+/// light by its name, an emitter by its emissive material's name (all the
+/// triangles of that material are one source); an entry applies to every
+/// source of that name.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SourceQuality {
+    pub name: String,
+    /// Off: the source emits nothing, in every term.
+    #[serde(default = "switched_on")]
+    pub on: bool,
+    /// Light samples per vertex drawn on this source alone; `None`: `light_samples`.
+    #[serde(default)]
+    pub samples: Option<u32>,
+}
+
+fn switched_on() -> bool {
+    true
+}
+
+impl SourceQuality {
+    /// The source `name`, on, with `samples` light samples of its own.
+    pub fn samples(name: &str, samples: u32) -> Self {
+        Self {
+            name: name.into(),
+            on: true,
+            samples: Some(samples),
+        }
+    }
+
+    /// The source `name`, switched off.
+    pub fn off(name: &str) -> Self {
+        Self {
+            name: name.into(),
+            on: false,
+            samples: None,
+        }
+    }
+}
 
 impl Default for RenderSettings {
     fn default() -> Self {
@@ -589,6 +637,7 @@ impl Default for RenderSettings {
             light_selection: LightSelection::default(),
             sampler: Sampler::default(),
             adaptive: None,
+            sources: Vec::new(),
         }
     }
 }
@@ -637,6 +686,22 @@ impl RenderSettings {
             if !(1..=MAX_SAMPLES_PER_VERTEX).contains(&count) {
                 return Err(format!(
                     "{name} {count} must be within 1..={MAX_SAMPLES_PER_VERTEX}"
+                ));
+            }
+        }
+        for (i, source) in self.sources.iter().enumerate() {
+            if source.name.is_empty() {
+                return Err("a source's quality needs the source's name".into());
+            }
+            if self.sources[..i].iter().any(|s| s.name == source.name) {
+                return Err(format!("source '{}' is given twice", source.name));
+            }
+            if let Some(count) = source.samples
+                && !(1..=MAX_SAMPLES_PER_VERTEX).contains(&count)
+            {
+                return Err(format!(
+                    "light samples {count} of source '{}' must be within 1..={MAX_SAMPLES_PER_VERTEX}",
+                    source.name
                 ));
             }
         }

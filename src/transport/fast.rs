@@ -409,14 +409,14 @@ impl<'a> Walk<'a> {
             && gather_directions(settings.light_sampling).is_some();
         if wanted && !self.can_hit_lights {
             self.tally
-                .no_gathered_directions(settings.light_samples.max(1));
+                .no_gathered_directions(self.context.lights.samples_per_vertex());
         }
         // M > 1 continuations double as gathered directions only where
         // they are traced anyway, to serve a later term
         let traced_anyway = vertex.index + 1 < self.last_reflection;
         if !(wanted && self.can_hit_lights) {
             Gather::None
-        } else if settings.light_samples <= 1
+        } else if self.context.lights.samples_per_vertex() <= 1
             && (continuations == 1 || traced_anyway)
             && gather_directions(settings.light_sampling)
                 == Some(self.continuation_directions(&vertex.brdf))
@@ -454,7 +454,7 @@ impl<'a> Walk<'a> {
             return;
         }
         let settings = &self.context.settings;
-        let count = settings.light_samples.max(1);
+        let count = self.context.lights.samples_per_vertex();
         let share = throughput / count as f32;
         let light_samples = match settings.light_sampling {
             LightSampling::Area | LightSampling::SolidAngle | LightSampling::Mis => true,
@@ -466,7 +466,7 @@ impl<'a> Walk<'a> {
         if light_samples {
             let directions = gather.directions_per_light_sample();
             for j in 0..count {
-                self.light_sample(vertex, share, &stream.split(j, count), directions);
+                self.light_sample(vertex, share, &stream.split(j, count), j, directions);
             }
         }
         if gather == Gather::Separate {
@@ -476,7 +476,7 @@ impl<'a> Walk<'a> {
         }
     }
 
-    /// One light sample (next-event estimation) at `vertex`, against
+    /// Light sample `slot` (next-event estimation) at `vertex`, against
     /// `directions` gathered directions per light sample (MIS).
     #[inline(always)]
     fn light_sample(
@@ -484,17 +484,17 @@ impl<'a> Walk<'a> {
         vertex: &Vertex,
         throughput: Vec3,
         stream: &SampleStream,
+        slot: u32,
         directions: f32,
     ) {
         let context = self.context;
         let settings = &context.settings;
         let base = dim::vertex_base(vertex.index);
-        let Some((index, probability, u_position)) = context
-            .lights
-            .pick_with_position(stream.uniform2(base + dim::LIGHT_POSITION), || {
-                stream.uniform(base + dim::LIGHT_SELECT)
-            })
-        else {
+        let Some((index, probability, u_position)) = context.lights.pick_with_position(
+            stream.uniform2(base + dim::LIGHT_POSITION),
+            slot,
+            || stream.uniform(base + dim::LIGHT_SELECT),
+        ) else {
             return;
         };
         let extended = !context.lights.lights[index].is_delta();

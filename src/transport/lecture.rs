@@ -28,6 +28,7 @@ use crate::render::settings::{Term, TermSet};
 use crate::transport::TermRadiance;
 use crate::transport::brdf::Brdf;
 use crate::transport::sampler::{SampleStream, dim};
+use crate::transport::sources::SourceBudget;
 use crate::transport::surface::SurfacePoint;
 
 /// The reflections after which Russian roulette may end a path: it decides
@@ -197,6 +198,9 @@ fn direct_lighting(
         return light_seen_in_mirror(context, x);
     }
     let base = dim::vertex_base(vertex);
+    if let Some(budget) = context.lights.budget() {
+        return quality_for_each_source(context, x, stream, base, budget);
+    }
     let Some((source, probability)) = context
         .lights
         .pick(stream.uniform(base + dim::LIGHT_SELECT))
@@ -205,6 +209,32 @@ fn direct_lighting(
     };
     let u = stream.uniform2(base + dim::LIGHT_POSITION);
     light_from_source(context, x, source, u) / probability
+}
+
+/// The lecture's "a quality for each source": each source s that is on
+/// gets its own N_s samples, averaged, and the sources are summed:
+/// Σ_s (1/N_s) Σ_k estimate_k. A source made of several lights (an
+/// emitter's triangles) picks one, t, with probability P(t | s).
+fn quality_for_each_source(
+    context: &RenderContext,
+    x: &Surface,
+    stream: &SampleStream,
+    base: u32,
+    budget: &SourceBudget,
+) -> Vec3 {
+    let count = budget.samples_per_vertex();
+    let mut radiance = Vec3::ZERO;
+    for slot in 0..count {
+        let u = stream
+            .split(slot, count)
+            .uniform2(base + dim::LIGHT_POSITION);
+        let Some((light, probability, samples, u_x)) = budget.pick(slot, u.x) else {
+            continue;
+        };
+        let estimate = light_from_source(context, x, light, Vec2::new(u_x, u.y)) / probability;
+        radiance += estimate / samples as f32;
+    }
+    radiance
 }
 
 /// ∫_Ωs L_e(q, −ω) f_r(x, ω → ωo) cos θ dω for source `source`, from one

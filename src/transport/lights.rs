@@ -44,6 +44,7 @@ use crate::geometry::{Frame, Ray, interpolate_point, offset_ray_origin};
 use crate::render::color::luminance;
 use crate::render::settings::{LightMode, LightSampling, LightSelection, RenderSettings};
 use crate::scene::{NO_ID, PunctualKind, Scene};
+use crate::transport::sources::{SourceBudget, SourceKey};
 use crate::transport::surface::{SurfacePoint, geometric_normal};
 use crate::transport::warps::{
     AliasTable, spherical_triangle, spherical_triangle_area, uniform_cone, uniform_cone_pdf,
@@ -197,6 +198,12 @@ pub struct LightTable {
     /// points), one flag per scene triangle; empty when none is hidden.
     hidden_triangles: Vec<bool>,
     pub spheres: Vec<Sphere>,
+    /// The source of each light, as the user names it.
+    sources: Vec<SourceKey>,
+    /// With a quality for each source: which source each light sample draws from.
+    budget: Option<SourceBudget>,
+    /// Light samples per vertex: `light_samples`, or N = Σ N_s with a quality for each source.
+    samples_per_vertex: u32,
 }
 
 impl LightTable {
@@ -210,10 +217,22 @@ impl LightTable {
         let radius = sphere_light_radius(scene, settings);
         table.add_punctual_lights(scene, settings.light_mode == LightMode::Area, radius);
         let scene_radius = 0.5 * scene.bounds().diagonal();
-        let powers = table.lights.iter().map(|l| power(scene, l, scene_radius));
-        let weights: Vec<f32> = match settings.light_selection {
-            LightSelection::Power => powers.collect(),
-            LightSelection::Uniform => powers.map(|p| if p > 0.0 { 1.0 } else { 0.0 }).collect(),
+        let powers: Vec<f32> = table
+            .lights
+            .iter()
+            .map(|l| power(scene, l, scene_radius))
+            .collect();
+        table.samples_per_vertex = settings.light_samples.max(1);
+        let weights: Vec<f32> = if settings.sources.is_empty() {
+            match settings.light_selection {
+                LightSelection::Power => powers,
+                LightSelection::Uniform => powers.iter().map(|&p| f32::from(p > 0.0)).collect(),
+            }
+        } else {
+            let (budget, weights) = SourceBudget::build(scene, settings, &table.sources, &powers);
+            table.samples_per_vertex = budget.samples_per_vertex().max(1);
+            table.budget = Some(budget);
+            weights
         };
         table.selection = AliasTable::new(&weights);
         table.triangle_sampling = match settings.light_sampling {
@@ -230,8 +249,9 @@ impl LightTable {
         table
     }
 
-    fn push(&mut self, light: Light) -> u32 {
+    fn push(&mut self, light: Light, source: SourceKey) -> u32 {
         self.lights.push(light);
+        self.sources.push(source);
         (self.lights.len() - 1) as u32
     }
 
@@ -244,17 +264,20 @@ impl LightTable {
             if area > 0.0 {
                 let material = &scene.materials[tri.material as usize];
                 let corners = tri.vertices.map(|v| scene.positions[v as usize]);
-                let light = self.push(Light::Triangle {
-                    triangle: i as u32,
-                    area,
-                    corners,
-                    normal: geometric_normal(corners[0], corners[1], corners[2]),
-                    uniform_radiance: material
-                        .emission_texture
-                        .is_none()
-                        .then_some(material.emission),
-                    double_sided: material.double_sided,
-                });
+                let light = self.push(
+                    Light::Triangle {
+                        triangle: i as u32,
+                        area,
+                        corners,
+                        normal: geometric_normal(corners[0], corners[1], corners[2]),
+                        uniform_radiance: material
+                            .emission_texture
+                            .is_none()
+                            .then_some(material.emission),
+                        double_sided: material.double_sided,
+                    },
+                    SourceKey::Emitter(tri.material),
+                );
                 // in increasing triangle order: the list stays sorted
                 self.triangle_light.push((i as u32, light));
             }
@@ -276,8 +299,8 @@ impl LightTable {
                     .push(i as u32);
             }
         }
-        for ((_, material), triangles) in groups {
-            let material = &scene.materials[material as usize];
+        for ((_, material_index), triangles) in groups {
+            let material = &scene.materials[material_index as usize];
             let radiance = material.emission
                 * material
                     .emission_texture
@@ -303,18 +326,21 @@ impl LightTable {
                     })
                     .sum::<Vec3>()
                     / area;
-                self.push(Light::CosinePoint {
-                    position: centroid,
-                    normal: normal_of(part[0]),
-                    radiance_area: radiance * area,
-                    two_sided: material.double_sided,
-                });
+                self.push(
+                    Light::CosinePoint {
+                        position: centroid,
+                        normal: normal_of(part[0]),
+                        radiance_area: radiance * area,
+                        two_sided: material.double_sided,
+                    },
+                    SourceKey::Emitter(material_index),
+                );
             }
         }
     }
 
     fn add_punctual_lights(&mut self, scene: &Scene, extended: bool, radius: f32) {
-        for light in &scene.lights {
+        for (index, light) in scene.lights.iter().enumerate() {
             let cone = match light.kind {
                 PunctualKind::Spot {
                     inner_cone_angle,
@@ -351,7 +377,7 @@ impl LightTable {
                     cone,
                 },
             };
-            self.push(new);
+            self.push(new, SourceKey::Light(index as u32));
         }
     }
 
@@ -401,7 +427,7 @@ impl LightTable {
         u_select: f32,
         u: Vec2,
     ) -> Option<LightSample> {
-        let (index, probability, u) = self.pick_with_position(u, || u_select)?;
+        let (index, probability, u) = self.pick_with_position(u, 0, || u_select)?;
         self.sample_light(scene, at, index, probability, u)
     }
 
@@ -411,8 +437,23 @@ impl LightTable {
         self.selection.sample(u_select)
     }
 
-    /// Picks a light and the pair that places the sample on it, from the
-    /// pair `u`: with up to [`SHARED_SELECTION_LIGHTS`] lights, `u.x` picks
+    /// Light samples per vertex: `light_samples`, or with a quality for
+    /// each source, N = Σ N_s (`transport::sources`).
+    #[inline]
+    pub fn samples_per_vertex(&self) -> u32 {
+        self.samples_per_vertex
+    }
+
+    /// With a quality for each source, the source of each light sample.
+    pub fn budget(&self) -> Option<&SourceBudget> {
+        self.budget.as_ref()
+    }
+
+    /// Picks the light of light sample `slot` (of [`LightTable::samples_per_vertex`])
+    /// and the pair that places the sample on it, from the pair `u`. With a
+    /// quality for each source, the slot's source picks one of its lights
+    /// with `u.x`, and the probability returned is N_s P(t | s) / N.
+    /// Otherwise, with up to [`SHARED_SELECTION_LIGHTS`] lights, `u.x` picks
     /// the light and, remapped, places the sample with `u.y`, so a
     /// stratified pair stays stratified over all the emitters together
     /// (the two triangles of a quad light share its points, instead of
@@ -422,8 +463,14 @@ impl LightTable {
     pub fn pick_with_position(
         &self,
         u: Vec2,
+        slot: u32,
         u_select: impl FnOnce() -> f32,
     ) -> Option<(usize, f32, Vec2)> {
+        if let Some(budget) = &self.budget {
+            let (index, probability, samples, x) = budget.pick(slot, u.x)?;
+            let share = samples as f32 / self.samples_per_vertex as f32;
+            return Some((index, probability * share, Vec2::new(x, u.y)));
+        }
         if self.lights.len() <= SHARED_SELECTION_LIGHTS {
             let (index, probability, x) = self.selection.sample_remapped(u.x)?;
             Some((index, probability, Vec2::new(x, u.y)))

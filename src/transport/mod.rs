@@ -6,6 +6,7 @@
 //! | `fast.rs` | the fast path tracer: MIS, splitting, skipped work, counters |
 //! | `brdf.rs` | Lambert, Phong and the mirror: evaluation and sampling |
 //! | `lights.rs` | the light sources and how a point on them is drawn |
+//! | `sources.rs` | a quality for each source: sources switched off, or with their own light samples |
 //! | `surface.rs` | what a ray hit, seen as a surface: normals, emission, BRDF |
 //! | `sampler.rs` | random numbers: independent, stratified, Sobol |
 //! | `warps.rs` | uniform numbers → directions and points with known densities; the alias table; MIS heuristics |
@@ -21,6 +22,7 @@ pub mod lecture;
 pub mod lights;
 pub mod path_log;
 pub mod sampler;
+pub mod sources;
 pub mod splitting;
 pub mod surface;
 mod tally;
