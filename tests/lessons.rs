@@ -52,7 +52,20 @@ fn the_built_in_lesson_follows_the_lecture_in_at_least_twelve_valid_steps() {
             .view(i, 640, 480)
             .unwrap_or_else(|e| panic!("step {}: {e}", i + 1));
         assert_eq!((view.settings.width, view.settings.height), (640, 480));
+        // every source a step gives a quality to is a source of its scene
+        let scene = lumiere::scene::builtin::load(&view.scene).unwrap();
+        lumiere::transport::sources::check(&view.settings, &scene)
+            .unwrap_or_else(|e| panic!("step {}: {e}", i + 1));
     }
+    // the lecture's "a quality for each source": steps with counts that differ, and one with a source off
+    let qualities: Vec<_> = (0..lesson.steps.len())
+        .map(|i| lesson.view(i, 640, 480).unwrap().settings.sources)
+        .collect();
+    assert!(qualities.iter().any(|q| {
+        let counts: Vec<_> = q.iter().filter_map(|s| s.samples).collect();
+        counts.windows(2).any(|w| w[0] != w[1])
+    }));
+    assert!(qualities.iter().flatten().any(|s| !s.on));
     // the lecture's order: emission, direct, indirect first
     let first_terms: Vec<TermSet> = (0..3)
         .map(|i| lesson.view(i, 640, 480).unwrap().settings.terms)
@@ -103,6 +116,11 @@ fn a_broken_lesson_is_refused_with_its_line_and_field() {
         problem.contains("step 1") && problem.contains("specular"),
         "{problem}"
     );
+    // a source's quality with a field it does not have, or a count out of range
+    let problem = refusal(&one_step("sources = [{ name = \"light\", colour = 3 }]"));
+    assert!(problem.contains("line 10") && problem.contains("colour"), "{problem}");
+    let problem = refusal(&one_step("sources = [{ name = \"light\", samples = 0 }]"));
+    assert!(problem.contains("step 1") && problem.contains("light samples 0"), "{problem}");
     // a probe off the image
     let problem = refusal(&one_step("probe = [5000, 2]"));
     assert!(problem.contains("probe"), "{problem}");

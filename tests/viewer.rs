@@ -622,6 +622,34 @@ fn light_units_follow_the_light_mode_and_the_power_stays() {
     harness.get_by_label(&power);
 }
 
+/// The Lights group's "a quality for each source": ticking it gives every
+/// source its own light samples; a source unticked reaches the worker
+/// switched off, and the Cornell box, whose only source it is, goes black.
+#[test]
+fn each_source_can_be_given_its_own_samples_or_switched_off() {
+    use lumiere::render::settings::SourceQuality;
+    let mut harness = harness();
+    harness.get_by_label("a quality for each source").click();
+    harness.run_steps(2);
+    assert_eq!(
+        harness.state().state.settings.sources,
+        vec![SourceQuality::samples("light", 1)]
+    );
+    harness.get_by_label("light").click();
+    harness.run_steps(2);
+    let done = wait_for(&mut harness, "the light switched off at the worker", |s| {
+        s.source.as_ref().is_some_and(|source| {
+            source.settings.sources.first().is_some_and(|q| !q.on)
+        }) && s.samples_per_pixel() >= 2
+    });
+    let brightest = done
+        .radiance
+        .iter()
+        .map(|l| l[0].max(l[1]).max(l[2]))
+        .fold(0.0f32, f32::max);
+    assert_eq!(brightest, 0.0, "the only source is off");
+}
+
 /// Automatic exposure shows the image's mean luminance Ȳ as mid-grey:
 /// L2 alone, dark at 0 EV, gets log₂(0.18 / Ȳ), several stops up.
 #[test]
