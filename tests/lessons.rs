@@ -118,9 +118,15 @@ fn a_broken_lesson_is_refused_with_its_line_and_field() {
     );
     // a source's quality with a field it does not have, or a count out of range
     let problem = refusal(&one_step("sources = [{ name = \"light\", colour = 3 }]"));
-    assert!(problem.contains("line 10") && problem.contains("colour"), "{problem}");
+    assert!(
+        problem.contains("line 10") && problem.contains("colour"),
+        "{problem}"
+    );
     let problem = refusal(&one_step("sources = [{ name = \"light\", samples = 0 }]"));
-    assert!(problem.contains("step 1") && problem.contains("light samples 0"), "{problem}");
+    assert!(
+        problem.contains("step 1") && problem.contains("light samples 0"),
+        "{problem}"
+    );
     // a probe off the image
     let problem = refusal(&one_step("probe = [5000, 2]"));
     assert!(problem.contains("probe"), "{problem}");

@@ -638,9 +638,10 @@ fn each_source_can_be_given_its_own_samples_or_switched_off() {
     harness.get_by_label("light").click();
     harness.run_steps(2);
     let done = wait_for(&mut harness, "the light switched off at the worker", |s| {
-        s.source.as_ref().is_some_and(|source| {
-            source.settings.sources.first().is_some_and(|q| !q.on)
-        }) && s.samples_per_pixel() >= 2
+        s.source
+            .as_ref()
+            .is_some_and(|source| source.settings.sources.first().is_some_and(|q| !q.on))
+            && s.samples_per_pixel() >= 2
     });
     let brightest = done
         .radiance

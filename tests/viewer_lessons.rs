@@ -146,3 +146,61 @@ fn the_lesson_group_opens_lessons_refuses_broken_ones_and_presents() {
     harness.run_steps(2);
     assert!(harness.query_by_label("Terms").is_some());
 }
+
+/// A clicker held down, back and forth: hundreds of key presses, one frame
+/// each, as fast as a key repeats. No frame blocks, the step always follows
+/// the keys, memory stays flat, and the last step's settings reach the worker.
+#[test]
+fn a_clicker_held_down_never_blocks_the_interface_nor_grows_memory() {
+    use std::time::{Duration, Instant};
+    let resident = || {
+        let statm = std::fs::read_to_string("/proc/self/statm").unwrap();
+        statm
+            .split_whitespace()
+            .nth(1)
+            .unwrap()
+            .parse::<u64>()
+            .unwrap()
+            * 4096
+    };
+    let mut harness = lesson_harness(0, Lang::En);
+    let last = Lesson::load("simulation-notions").unwrap().steps.len() - 1;
+    let mut expected = 0usize;
+    let mut state = 0x2545_f491u64;
+    let mut settled = 0;
+    for press in 0..600 {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let key = match state >> 60 {
+            0 => egui::Key::Home,
+            1..=6 => egui::Key::ArrowLeft,
+            _ => egui::Key::ArrowRight,
+        };
+        expected = match key {
+            egui::Key::Home => 0,
+            egui::Key::ArrowLeft => expected.saturating_sub(1),
+            _ => (expected + 1).min(last),
+        };
+        let start = Instant::now();
+        harness.key_press(key);
+        harness.run_steps(1);
+        assert!(
+            start.elapsed() < Duration::from_secs(2),
+            "press {press}: the frame took {:?}",
+            start.elapsed()
+        );
+        assert_eq!(harness.state().lesson.step, expected, "press {press}");
+        if press == 99 {
+            settled = resident();
+        }
+    }
+    assert_step_reaches_the_worker(&mut harness, expected);
+    let end = resident();
+    assert!(
+        end <= settled + (64 << 20),
+        "resident memory grew from {} MB to {} MB over 500 presses",
+        settled >> 20,
+        end >> 20
+    );
+}
