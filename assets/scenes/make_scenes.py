@@ -16,7 +16,7 @@ Conventions (docs: /work/shared/course/COURSE.md, lumiere's loader):
 
 Scenes:
 * veach-mis.gltf      Veach's multiple-importance-sampling test picture
-* penumbra.gltf       an occluder on a post under a square area light
+* penumbra.gltf       an occluder on a post under a point light (a sphere with --lights area)
 * indirect-room.gltf  a closed room whose visible surfaces get no direct light
 * cornell-{point,spot,mirror,glossy}.gltf  copies of tests/data/ variants
 """
@@ -509,8 +509,8 @@ def penumbra():
     g = Gltf(
         "Penumbra",
         {
-            "title": "A cube on a thin post above a white floor, under one square area light: umbra and penumbra",
-            "lesson": "penumbra width = light size x (occluder-to-floor distance) / (light-to-occluder distance): it grows with the light's size (--lights point, the light collapsed to a point of the same power, gives the hard shadow) and along the post, away from where it meets the floor",
+            "title": "A cube on a thin post above a white floor, under one point light: a hard shadow, or a penumbra that grows with the light's size",
+            "lesson": "as authored the light is a point: a hard shadow. --lights area makes it a sphere of radius r (--light-radius) with the same power: the penumbra's width = light size x (occluder-to-floor distance) / (light-to-occluder distance) grows with r and along the post, away from where it meets the floor",
         },
     )
     white = g.material("white floor", [0.8, 0.8, 0.8])
@@ -521,19 +521,20 @@ def penumbra():
     post = Geometry().box([-0.02, 0.0, -0.02], [0.02, 0.8, 0.02], skip=("-y", "+y"))
     g.mesh("cube", cube, grey)
     g.mesh("post", post, grey)
-    # light: 0.5 m square at 2.4 m, to the left and behind, facing down
-    size = 0.5
-    center = [-0.8, 2.4, -0.6]
-    radiance = 50.0
-    light = g.material("area light", [0.0, 0.0, 0.0], emission=[radiance] * 3)
-    g.mesh(
-        "area light (0.5 m square, facing down)",
-        Geometry().rect(center, [size / 2, 0.0, 0.0], [0.0, 0.0, size / 2]),
-        light,
-    )
+    # light: a point at 2.4 m, to the left and behind; 12.5 W/sr is the
+    # intensity straight down of a 0.5 m square emitter of radiance 50 W/m^2/sr
+    position = [-0.8, 2.4, -0.6]
+    intensity = 12.5
+    g.extensions.add("KHR_lights_punctual")
+    g.doc["extensions"] = {
+        "KHR_lights_punctual": {
+            "lights": [{"name": "lamp", "type": "point", "color": [1.0, 1.0, 1.0], "intensity": intensity}]
+        }
+    }
+    g.node({"name": "lamp", "translation": position, "extensions": {"KHR_lights_punctual": {"light": 0}}})
     g.doc["asset"]["extras"]["light"] = (
-        "emissive square %.2f m on a side at %s, facing -y, radiance %g W/m^2/sr: power pi A L = %.2f W"
-        % (size, center, radiance, math.pi * size * size * radiance)
+        "point light at %s, intensity %g W/sr: power 4 pi I = %.1f W (a sphere of the same power with --lights area)"
+        % (position, intensity, 4.0 * math.pi * intensity)
     )
     g.camera("camera", [2.4, 1.9, 3.6], [0.25, 0.45, 0.1], math.radians(42.0), 4.0 / 3.0)
     g.write("penumbra.gltf")

@@ -54,7 +54,7 @@ pub const SCENES: [BuiltinScene; 8] = [
     },
     BuiltinScene {
         name: "penumbra",
-        description: "a cube on a post under a square light: umbra and penumbra (hard with --lights point)",
+        description: "a cube on a post under a point light: a hard shadow, and a penumbra growing with the light's size with --lights area --light-radius R",
         gltf: include_bytes!("../../assets/scenes/penumbra.gltf"),
     },
     BuiltinScene {
