@@ -204,3 +204,67 @@ fn a_clicker_held_down_never_blocks_the_interface_nor_grows_memory() {
         end >> 20
     );
 }
+
+/// The Scene group's library: every built-in scene with a thumbnail
+/// rendered in the background (each a picture, not a blank), its name and
+/// description; clicking one loads it and the worker renders it.
+#[test]
+fn the_scene_library_shows_thumbnails_and_loads_the_scene_clicked() {
+    let mut harness = viewer::harness();
+    harness.get_by_label("Scene").click();
+    harness.run_steps(2);
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+    let count = lumiere::scene::builtin::SCENES.len();
+    while harness.state().thumbnails.ready() < count {
+        assert!(
+            std::time::Instant::now() < deadline,
+            "the thumbnails never came"
+        );
+        harness.step();
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    // the library is below the panel's fold: scroll to it (an animation)
+    harness.get_by_label("penumbra").scroll_to_me();
+    harness.run_steps(30);
+    harness.get_by_label("penumbra").click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().scene_spec, "penumbra");
+    wait_for(&mut harness, "the penumbra scene", |s| {
+        s.source.as_ref().is_some_and(|source| {
+            source
+                .scene
+                .upgrade()
+                .is_some_and(|scene| scene.name == harness_scene_name())
+        })
+    });
+    // each thumbnail is a picture: lit pixels and dark ones, and no two alike
+    let pictures: Vec<Vec<u8>> = lumiere::scene::builtin::SCENES
+        .iter()
+        .map(|scene| {
+            let image = lumiere::app::thumbnails::thumbnail(scene.name).unwrap();
+            image
+                .pixels
+                .iter()
+                .flat_map(|p| [p.r(), p.g(), p.b()])
+                .collect()
+        })
+        .collect();
+    for (scene, picture) in lumiere::scene::builtin::SCENES.iter().zip(&pictures) {
+        let lit = picture.iter().filter(|&&v| v > 64).count();
+        let dark = picture.iter().filter(|&&v| v < 16).count();
+        assert!(
+            lit > 100 && dark > 10,
+            "{}: {lit} lit, {dark} dark",
+            scene.name
+        );
+    }
+    for i in 0..pictures.len() {
+        for j in 0..i {
+            assert_ne!(pictures[i], pictures[j]);
+        }
+    }
+}
+
+fn harness_scene_name() -> String {
+    lumiere::scene::builtin::load("penumbra").unwrap().name
+}

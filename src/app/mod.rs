@@ -17,6 +17,7 @@ pub mod probe_view;
 pub mod reference;
 mod source_quality;
 pub mod split;
+pub mod thumbnails;
 
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
@@ -178,6 +179,8 @@ pub struct LumiereApp {
     pub lesson: lesson_view::LessonState,
     /// The emitting area of each material, for the scene at this address.
     emitter_areas: (usize, Vec<f32>),
+    /// The scene library's thumbnails, rendered the first time it is shown.
+    pub thumbnails: thumbnails::Thumbnails,
 }
 
 /// Forgets the qualities `settings` give sources `scene` does not have
@@ -272,6 +275,7 @@ impl LumiereApp {
                 ..Default::default()
             },
             emitter_areas: (0, Vec::new()),
+            thumbnails: thumbnails::Thumbnails::default(),
         };
         if let Some(lesson) = options.lesson {
             lesson_view::open(&mut app, lesson, options.step);

@@ -658,21 +658,17 @@ fn scene_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 app.scene.lights.len()
             ));
             let mut chosen = None;
-            egui::ComboBox::from_label("built-in")
-                .selected_text(app.scene_spec.as_str())
-                .show_ui(ui, |ui| {
-                    for scene in &crate::scene::builtin::SCENES {
+            egui::CollapsingHeader::new("library")
+                .default_open(true)
+                .show(ui, |ui| {
+                    for (index, scene) in crate::scene::builtin::SCENES.iter().enumerate() {
                         let current = app.scene_spec == scene.name;
-                        if ui
-                            .selectable_label(current, scene.name)
-                            .on_hover_text(scene.description)
-                            .clicked()
-                        {
+                        if library_row(ui, &mut app.thumbnails, index, current) {
                             chosen = Some(scene.name);
                         }
                     }
                 })
-                .response
+                .header_response
                 .on_hover_text(
                     "The scene library: the Cornell box, its variants, one scene per lesson",
                 );
@@ -769,4 +765,32 @@ pub fn viewport(
             rect
         })
         .inner
+}
+
+/// One scene of the library: its thumbnail, its name and its description;
+/// true when it was clicked.
+fn library_row(
+    ui: &mut egui::Ui,
+    thumbnails: &mut super::thumbnails::Thumbnails,
+    index: usize,
+    current: bool,
+) -> bool {
+    let scene = &crate::scene::builtin::SCENES[index];
+    let [width, height] = super::thumbnails::SIZE.map(|v| v as f32);
+    ui.horizontal(|ui| {
+        let picture = match thumbnails.get(ui.ctx(), index) {
+            Some(texture) => ui.add(
+                egui::Image::new((texture.id(), egui::vec2(width, height)))
+                    .sense(egui::Sense::click()),
+            ),
+            None => ui.add_sized([width, height], egui::Spinner::new()),
+        };
+        ui.vertical(|ui| {
+            let name = ui.selectable_label(current, egui::RichText::new(scene.name).strong());
+            ui.add(egui::Label::new(egui::RichText::new(scene.description).small()).wrap());
+            name.clicked() || picture.clicked()
+        })
+        .inner
+    })
+    .inner
 }
