@@ -130,3 +130,39 @@ fn stop_at_spp_stops_exactly_and_pause_holds() {
     let resumed = wait_for(&renderer, "8 spp", |s| s.samples_per_pixel() == 8 && s.idle);
     assert_eq!(resumed.restarts, 1);
 }
+
+/// What the lights are built from — a source switched off, the light
+/// selection — reaches the image at once: the worker rebuilds its lights,
+/// not only its settings.
+#[test]
+fn a_change_of_what_the_lights_are_built_from_rebuilds_them() {
+    use lumiere::render::settings::SourceQuality;
+    let mut request = request();
+    let renderer = ProgressiveRenderer::spawn(request.clone(), || {});
+    wait_for(&renderer, "2 spp", |s| s.samples_per_pixel() >= 2);
+    request.settings.sources = vec![SourceQuality::off("light")];
+    renderer.request(request.clone());
+    let off = wait_for(&renderer, "the light switched off", |s| {
+        s.source
+            .as_ref()
+            .is_some_and(|source| source.settings == request.settings)
+            && !s.preview
+            && s.samples_per_pixel() >= 2
+    });
+    let brightest = off
+        .radiance
+        .iter()
+        .map(|l| l[0].max(l[1]).max(l[2]))
+        .fold(0.0f32, f32::max);
+    assert_eq!(brightest, 0.0, "the Cornell box's only source is off");
+    request.settings.sources = vec![SourceQuality::samples("light", 2)];
+    renderer.request(request.clone());
+    let on = wait_for(&renderer, "the light back on", |s| {
+        s.source
+            .as_ref()
+            .is_some_and(|source| source.settings == request.settings)
+            && !s.preview
+            && s.samples_per_pixel() >= 2
+    });
+    assert!(on.radiance.iter().any(|l| l[0] > 0.0));
+}

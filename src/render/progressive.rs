@@ -7,7 +7,10 @@
 //! and decides what a new request costs:
 //!
 //! * a change of radiance (scene, light mode or radius, BRDF, camera, size,
-//!   seed, bounces) **restarts**: the film is cleared, a quick preview at a
+//!   seed, bounces) **restarts**; a change of what the lights are built from
+//!   (the scene, the light mode, radius, selection and sampling, the
+//!   sources' qualities: [`LightTable::same_lights`]) rebuilds the lights and
+//!   the BVH first. On a restart the film is cleared, a quick preview at a
 //!   quarter of the resolution is published first, then full-resolution passes;
 //!   the pass under way is cancelled between tiles so the restart is prompt;
 //! * a change of the visible terms does **not** restart: each term has its own
@@ -33,6 +36,7 @@ use crate::render::{PassBuffer, render_pass_cancellable};
 use crate::scene::{Camera, Scene};
 use crate::transport::continuations::Continuations;
 use crate::transport::counts::RayCounts;
+use crate::transport::lights::LightTable;
 use crate::transport::splitting::choose_continuations;
 
 /// Everything that decides what the viewer shows.
@@ -304,8 +308,7 @@ impl Worker {
         };
         let old = &current.request;
         let rebuild = !Arc::ptr_eq(&old.scene, &request.scene)
-            || old.settings.light_mode != settings.light_mode
-            || old.settings.light_radius != settings.light_radius;
+            || !LightTable::same_lights(&old.settings, settings);
         let restart = rebuild
             || old.camera != request.camera
             || RenderSettings {

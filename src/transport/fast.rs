@@ -408,15 +408,22 @@ impl<'a> Walk<'a> {
             && self.terms.contains_reflections(vertex.index + 1)
             && gather_directions(settings.light_sampling).is_some();
         if wanted && !self.can_hit_lights {
-            self.tally
-                .no_gathered_directions(self.context.lights.samples_per_vertex());
+            self.tally.no_gathered_directions(
+                self.context
+                    .lights
+                    .samples_per_vertex(&self.context.settings),
+            );
         }
         // M > 1 continuations double as gathered directions only where
         // they are traced anyway, to serve a later term
         let traced_anyway = vertex.index + 1 < self.last_reflection;
         if !(wanted && self.can_hit_lights) {
             Gather::None
-        } else if self.context.lights.samples_per_vertex() <= 1
+        } else if self
+            .context
+            .lights
+            .samples_per_vertex(&self.context.settings)
+            <= 1
             && (continuations == 1 || traced_anyway)
             && gather_directions(settings.light_sampling)
                 == Some(self.continuation_directions(&vertex.brdf))
@@ -454,7 +461,10 @@ impl<'a> Walk<'a> {
             return;
         }
         let settings = &self.context.settings;
-        let count = self.context.lights.samples_per_vertex();
+        let count = self
+            .context
+            .lights
+            .samples_per_vertex(&self.context.settings);
         let share = throughput / count as f32;
         let light_samples = match settings.light_sampling {
             LightSampling::Area | LightSampling::SolidAngle | LightSampling::Mis => true,

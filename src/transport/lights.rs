@@ -202,8 +202,6 @@ pub struct LightTable {
     sources: Vec<SourceKey>,
     /// With a quality for each source: which source each light sample draws from.
     budget: Option<SourceBudget>,
-    /// Light samples per vertex: `light_samples`, or N = Σ N_s with a quality for each source.
-    samples_per_vertex: u32,
 }
 
 impl LightTable {
@@ -222,7 +220,6 @@ impl LightTable {
             .iter()
             .map(|l| power(scene, l, scene_radius))
             .collect();
-        table.samples_per_vertex = settings.light_samples.max(1);
         let weights: Vec<f32> = if settings.sources.is_empty() {
             match settings.light_selection {
                 LightSelection::Power => powers,
@@ -230,7 +227,6 @@ impl LightTable {
             }
         } else {
             let (budget, weights) = SourceBudget::build(scene, settings, &table.sources, &powers);
-            table.samples_per_vertex = budget.samples_per_vertex().max(1);
             table.budget = Some(budget);
             weights
         };
@@ -247,6 +243,17 @@ impl LightTable {
             .filter(selectable)
             .any(|i| !table.lights[i].is_delta());
         table
+    }
+
+    /// Whether [`LightTable::build`] gives the same table (and the same
+    /// scene, sources switched off) for settings `a` and `b`.
+    pub fn same_lights(a: &RenderSettings, b: &RenderSettings) -> bool {
+        a.light_mode == b.light_mode
+            && a.light_radius == b.light_radius
+            && a.light_selection == b.light_selection
+            && a.light_sampling == b.light_sampling
+            && a.sources == b.sources
+            && (a.sources.is_empty() || a.light_samples == b.light_samples)
     }
 
     fn push(&mut self, light: Light, source: SourceKey) -> u32 {
@@ -437,11 +444,14 @@ impl LightTable {
         self.selection.sample(u_select)
     }
 
-    /// Light samples per vertex: `light_samples`, or with a quality for
-    /// each source, N = Σ N_s (`transport::sources`).
+    /// Light samples per vertex: `settings.light_samples`, or with a
+    /// quality for each source, N = Σ N_s (`transport::sources`).
     #[inline]
-    pub fn samples_per_vertex(&self) -> u32 {
-        self.samples_per_vertex
+    pub fn samples_per_vertex(&self, settings: &RenderSettings) -> u32 {
+        match &self.budget {
+            Some(budget) => budget.samples_per_vertex().max(1),
+            None => settings.light_samples.max(1),
+        }
     }
 
     /// With a quality for each source, the source of each light sample.
@@ -468,7 +478,7 @@ impl LightTable {
     ) -> Option<(usize, f32, Vec2)> {
         if let Some(budget) = &self.budget {
             let (index, probability, samples, x) = budget.pick(slot, u.x)?;
-            let share = samples as f32 / self.samples_per_vertex as f32;
+            let share = samples as f32 / budget.samples_per_vertex() as f32;
             return Some((index, probability * share, Vec2::new(x, u.y)));
         }
         if self.lights.len() <= SHARED_SELECTION_LIGHTS {
