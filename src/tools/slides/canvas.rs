@@ -379,7 +379,8 @@ pub fn fit_line(text: &str, size: f32, min_size: f32, max_width: f32) -> (String
 
 /// `text` wrapped onto at most `max_lines` lines of `max_width` at font size
 /// `size`, or smaller (by 5% steps, down to `min_size`) if it needs more;
-/// the last line ends with an ellipsis if it still does. The lines and their size.
+/// the last line ends with an ellipsis if it still does. The lines and their
+/// size; `max_lines` is at least 1.
 pub fn fit_paragraph(
     text: &str,
     size: f32,
@@ -387,6 +388,7 @@ pub fn fit_paragraph(
     max_width: f32,
     max_lines: usize,
 ) -> (Vec<String>, f32) {
+    assert!(max_lines >= 1, "a paragraph needs a line");
     let mut size = size;
     loop {
         let lines = wrap(text, size, max_width);
