@@ -14,7 +14,7 @@
 //! | [`render`] | settings, the film, the render loop, the viewer's worker, export |
 //! | [`analysis`] | error metrics, convergence, noise views, the probe, the path view |
 //! | [`lesson`] | the course's lessons: steps of settings, titles, formulas, captions |
-//! | [`tools`] | `lumiere bench`, `stress` and `strip` |
+//! | [`tools`] | `lumiere bench`, `stress`, `strip` and the slides of `lesson --export` |
 //! | `app` | the viewer (feature `gui`) |
 //!
 //! Rendering one term of a scene whose answer is known — the furnace, a

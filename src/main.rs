@@ -13,6 +13,7 @@ use clap::{Parser, Subcommand};
 use lumiere::tools::bench::memory::CountingAllocator;
 
 use cli::bench::BenchArgs;
+use cli::lesson::LessonArgs;
 use cli::lessons::LessonsArgs;
 use cli::render::RenderArgs;
 use cli::stress::StressArgs;
@@ -49,6 +50,8 @@ enum Command {
     Bench(BenchArgs),
     /// List the built-in lessons (with their steps) and scenes.
     Lessons(LessonsArgs),
+    /// Export a lesson as slides: each step rendered with its title, formula and caption (PNG, GIF with --gif), and an index.md.
+    Lesson(LessonArgs),
 }
 
 fn main() -> ExitCode {
@@ -59,6 +62,7 @@ fn main() -> ExitCode {
         Some(Command::Stress(args)) => cli::stress::run(&args),
         Some(Command::Bench(args)) => cli::bench::run(&args),
         Some(Command::Lessons(args)) => cli::lessons::run(&args),
+        Some(Command::Lesson(args)) => cli::lesson::run(&args),
         None => cli::view::run(ViewArgs::defaults(), true),
     };
     match result {

@@ -3,6 +3,7 @@
 //! settings, the worker pool, the progress bar and the summary line.
 
 pub mod bench;
+pub mod lesson;
 pub mod lessons;
 pub mod options;
 pub mod parsers;

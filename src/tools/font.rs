@@ -1,7 +1,13 @@
-//! The font of the tools' images: Hack Regular, embedded in the binary
-//! (`assets/fonts/`, MIT/Bitstream Vera licence), so that no system font or
-//! fontconfig is needed. The bench's plots register it with plotters; the
-//! strips rasterize it with ab_glyph (antialiased coverage).
+//! The fonts of the tools' images, embedded in the binary (`assets/fonts/`,
+//! their licences beside them), so that no system font or fontconfig is
+//! needed:
+//!
+//! * Hack Regular (MIT/Bitstream Vera licence): the bench's plots register
+//!   it with plotters; the strips rasterize it with ab_glyph.
+//! * DejaVu Sans (Bitstream Vera licence, DejaVu changes in the public
+//!   domain): the slides' titles, formulas and captions, rasterized with
+//!   ab_glyph. It has the French accents and the lessons' mathematics
+//!   (subscripts, Greek letters, ∫, Σ, ≈, ∈, arrows).
 
 use std::sync::LazyLock;
 
@@ -10,10 +16,21 @@ use ab_glyph::FontRef;
 /// The TrueType file of Hack Regular.
 pub const HACK_REGULAR: &[u8] = include_bytes!("../../assets/fonts/Hack-Regular.ttf");
 
+/// The TrueType file of DejaVu Sans (the viewer draws the lessons with it too).
+pub const DEJAVU_SANS: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+
 /// [`HACK_REGULAR`] parsed once.
 pub fn hack_regular() -> &'static FontRef<'static> {
     static FONT: LazyLock<FontRef<'static>> = LazyLock::new(|| {
         FontRef::try_from_slice(HACK_REGULAR).expect("the embedded font is a valid TrueType file")
+    });
+    &FONT
+}
+
+/// [`DEJAVU_SANS`] parsed once.
+pub fn dejavu_sans() -> &'static FontRef<'static> {
+    static FONT: LazyLock<FontRef<'static>> = LazyLock::new(|| {
+        FontRef::try_from_slice(DEJAVU_SANS).expect("the embedded font is a valid TrueType file")
     });
     &FONT
 }
@@ -27,6 +44,29 @@ mod tests {
         let font = super::hack_regular();
         for c in '!'..='~' {
             assert_ne!(font.glyph_id(c).0, 0, "{c:?} has no glyph");
+        }
+    }
+
+    /// Every character of the built-in lessons' texts, in both languages,
+    /// has a glyph in DejaVu Sans: no formula prints a '?'.
+    #[test]
+    fn dejavu_sans_has_every_character_of_the_built_in_lessons() {
+        let font = super::dejavu_sans();
+        for (name, _) in crate::lesson::BUILTIN {
+            let lesson = crate::lesson::Lesson::load(name).unwrap();
+            let mut texts = vec![lesson.title.fr.clone(), lesson.title.en.clone()];
+            for step in &lesson.steps {
+                texts.extend([step.formula.clone(), step.title.fr.clone()]);
+                texts.extend([step.title.en.clone(), step.caption.fr.clone()]);
+                texts.push(step.caption.en.clone());
+            }
+            for c in texts
+                .iter()
+                .flat_map(|t| t.chars())
+                .filter(|c| !c.is_whitespace())
+            {
+                assert_ne!(font.glyph_id(c).0, 0, "{name}: {c:?} has no glyph");
+            }
         }
     }
 }

@@ -84,6 +84,22 @@ impl SampleCounts {
         *self.0.last().expect("at least one count")
     }
 
+    /// 1, 2, 4, 8, … below `max`, then `max` (at least 1): the frames of a
+    /// convergence animation.
+    pub fn doubling_to(max: u32) -> Self {
+        let max = max.max(1);
+        let mut counts: Vec<u32> = std::iter::successors(Some(1u32), |n| n.checked_mul(2))
+            .take_while(|&n| n < max)
+            .collect();
+        counts.push(max);
+        Self(counts)
+    }
+
+    /// One count, `count` (at least 1).
+    pub fn only(count: u32) -> Self {
+        Self(vec![count.max(1)])
+    }
+
     /// "1 spp", "4 spp", …
     pub fn labels(&self) -> Vec<String> {
         self.0.iter().map(|n| format!("{n} spp")).collect()

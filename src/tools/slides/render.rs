@@ -1,0 +1,322 @@
+//! A step's render on its slide: the progressive render, what the image
+//! region shows (the image, or a noise view with its colour bar), the
+//! probed pixel's rays, the frames of the convergence animation and the GIF
+//! they are written to.
+
+use std::fs::File;
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use glam::Vec2;
+use image::codecs::gif::{GifEncoder, Repeat};
+use image::{Delay, Frame, RgbaImage};
+
+use super::canvas::{self, Canvas, Rect, Rgb8};
+use super::{Slide, SlideLayout, TEXT_COLOR};
+use crate::analysis::noise::{DisplayMode, FalseColour, NoiseView, Unit, false_colour};
+use crate::analysis::path_view::{PathLine, RayRole, path_lines};
+use crate::lesson::StepView;
+use crate::render::color::linear_to_srgb;
+use crate::render::context::RenderContext;
+use crate::render::export::{ExportError, to_srgb8};
+use crate::render::film::Film;
+use crate::render::settings::Term;
+use crate::render::{RenderStats, sample_stream};
+use crate::scene::Scene;
+use crate::tools::strip::{SampleCounts, render_row};
+use crate::transport::counts::RayCounts;
+use crate::transport::path_log::PathLog;
+use crate::transport::splitting::choose_continuations;
+
+/// Time a GIF frame is shown, in milliseconds…
+const FRAME_MS: u32 = 700;
+/// …and the last one, the converged image.
+const LAST_FRAME_MS: u32 = 2100;
+/// NeuQuant's sampling factor for the GIF's palettes (1: best, 30: fastest).
+const GIF_SPEED: i32 = 10;
+/// Colour of the "N spp" label's box.
+const LABEL_BOX: Rgb8 = [0, 0, 0];
+
+/// The samples per pixel of the frames of a step of `spp` samples:
+/// 1, 2, 4, 8, … below `spp`, then `spp`.
+pub fn frame_counts(spp: u32) -> Vec<u32> {
+    SampleCounts::doubling_to(spp).as_slice().to_vec()
+}
+
+/// A step's finished slide and what its render did.
+#[derive(Clone, Debug)]
+pub struct SlideRender {
+    pub slide: Canvas,
+    pub stats: RenderStats,
+}
+
+/// Renders `view` (on a film of the slide's image size) for `view.spp`
+/// samples per pixel, passes 0, 1, … as `lumiere render` does, and returns
+/// the slide with its image. With `animate`, `frame(n, slide)` receives the
+/// slide at each of [`frame_counts`] with its "N spp" label; `progress`
+/// follows each pass.
+pub fn render_slide(
+    scene: Arc<Scene>,
+    view: &StepView,
+    slide: &Slide,
+    animate: bool,
+    progress: impl FnMut(&RenderStats),
+    mut frame: impl FnMut(u32, &Canvas),
+) -> SlideRender {
+    let layout = &slide.layout;
+    assert_eq!(
+        (view.settings.width, view.settings.height),
+        (layout.image.width, layout.image.height),
+        "the step's film is the slide's image"
+    );
+    let mut context = RenderContext::new(scene, view.settings.clone());
+    choose_continuations(&mut context);
+    let paths = view
+        .probe
+        .map(|pixel| probe_lines(&context, pixel))
+        .unwrap_or_default();
+    let counts = if animate {
+        SampleCounts::doubling_to(view.spp)
+    } else {
+        SampleCounts::only(view.spp)
+    };
+    let mut last = None;
+    let stats = render_row(&context, &counts, progress, |i, film| {
+        let count = counts.as_slice()[i];
+        let picture = picture(slide, view, film, &paths);
+        if animate {
+            let mut labelled = picture.clone();
+            draw_label(&mut labelled, layout, &format!("{count} spp"));
+            frame(count, &labelled);
+        }
+        if count == view.spp {
+            last = Some(picture);
+        }
+    });
+    SlideRender {
+        slide: last.expect("the last count is the step's"),
+        stats,
+    }
+}
+
+/// The slide with the image region of `film`, its colour bar and the probe's rays.
+fn picture(slide: &Slide, view: &StepView, film: &Film, paths: &[PathLine]) -> Canvas {
+    let terms = view.settings.terms;
+    let noise = (view.display_mode != DisplayMode::Image)
+        .then(|| {
+            let noise_view = NoiseView {
+                mode: view.display_mode,
+                ..NoiseView::default()
+            };
+            false_colour(film, terms, noise_view, None).ok()
+        })
+        .flatten();
+    let srgb = match &noise {
+        Some(noise) => noise
+            .rgba
+            .iter()
+            .flat_map(|p| [p[0], p[1], p[2]])
+            .map(|c| (linear_to_srgb(c) * 255.0 + 0.5) as u8)
+            .collect(),
+        None => to_srgb8(&film.radiance(terms), view.display),
+    };
+    let mut canvas = slide.with_image(&srgb);
+    if let Some(noise) = &noise {
+        draw_colour_bar(&mut canvas, &slide.layout, noise);
+    }
+    draw_paths(&mut canvas, slide.layout.image, paths);
+    canvas
+}
+
+// ───────────────────────── the probe's rays ─────────────────────────
+
+/// The rays of the first sample of `pixel`, as lines on the film (the
+/// viewer's path view shows the same sample first).
+fn probe_lines(context: &RenderContext, (x, y): (u32, u32)) -> Vec<PathLine> {
+    let index = y as u64 * context.settings.width as u64 + x as u64;
+    let stream = sample_stream(&context.settings, index, 0);
+    let mut log = PathLog::default();
+    context.trace_recorded(x, y, &stream, &mut RayCounts::default(), &mut log);
+    path_lines(&log, &context.camera, context.settings.terms)
+}
+
+/// The colour of a ray: its term's, or red (blocked), grey (missed), white (camera).
+fn role_colour(role: RayRole) -> Rgb8 {
+    match role {
+        RayRole::Camera => [255, 255, 255],
+        RayRole::ShadowBlocked { .. } => [235, 70, 60],
+        RayRole::GatherMissed { .. } => [170, 170, 170],
+        RayRole::Bounce { term }
+        | RayRole::LastBounce { term }
+        | RayRole::ShadowLit { term }
+        | RayRole::GatherLit { term } => match term {
+            Term::L0 => [230, 180, 60],
+            Term::L1 => [90, 160, 230],
+            Term::L2 => [110, 200, 120],
+            Term::L3Plus => [200, 120, 200],
+        },
+    }
+}
+
+/// Draws `lines` (film pixels) over the image at `image`, as the viewer's
+/// path view does: solid lines over a dark outline, dashed ones for rays
+/// that added nothing, a ring where the camera ray lands.
+fn draw_paths(canvas: &mut Canvas, image: Rect, lines: &[PathLine]) {
+    let s = (image.height as f32 / 480.0).max(1.0);
+    let offset = Vec2::new(image.x as f32, image.y as f32);
+    let outline: Rgb8 = [12, 12, 12];
+    for line in lines {
+        let (from, to) = (line.from + offset, line.to + offset);
+        let colour = role_colour(line.role);
+        if line.role == RayRole::Camera {
+            canvas.draw_disc(to, 5.0 * s, Some(3.5 * s), outline, image);
+            canvas.draw_disc(to, 5.0 * s, Some(2.0 * s), colour, image);
+            continue;
+        }
+        let width = s * if matches!(line.role, RayRole::GatherMissed { .. }) {
+            1.0
+        } else {
+            2.0
+        };
+        if line.role.is_dashed() {
+            canvas.draw_segment((from, to), width, colour, Some((6.0 * s, 4.0 * s)), image);
+        } else {
+            canvas.draw_segment((from, to), width + 1.5 * s, outline, None, image);
+            canvas.draw_segment((from, to), width, colour, None, image);
+        }
+        if line.ends_on_film && !matches!(line.role, RayRole::GatherMissed { .. }) {
+            canvas.draw_disc(to, 3.0 * s, None, colour, image);
+        }
+    }
+}
+
+// ───────────────────────── labels ─────────────────────────
+
+/// Draws `text` on a dark box in the lower right corner of the image.
+fn draw_label(canvas: &mut Canvas, layout: &SlideLayout, text: &str) {
+    let size = layout.caption_size;
+    let pad = (0.3 * size).round();
+    let width = canvas::text_width(text, size).ceil() + 2.0 * pad;
+    let height = (canvas::ascent(size) + canvas::descent(size)).ceil() + 2.0 * pad;
+    let image = layout.image;
+    let (w, h) = (
+        (width as u32).min(image.width),
+        (height as u32).min(image.height),
+    );
+    let inset = (0.4 * size).round() as u32;
+    let x = image.right().saturating_sub(w + inset).max(image.x);
+    let y = image.bottom().saturating_sub(h + inset).max(image.y);
+    let rect = Rect::new(x, y, w, h);
+    canvas.fill(rect, LABEL_BOX);
+    let baseline = y as f32 + pad + canvas::ascent(size);
+    canvas.draw_text(text, size, (x as f32 + pad, baseline), TEXT_COLOR, rect);
+}
+
+/// A value of the colour bar: few digits, an exponent for tiny values,
+/// whole sample counts.
+fn format_value(value: f32, unit: Unit) -> String {
+    let magnitude = value.abs();
+    if unit == Unit::Samples || (unit == Unit::Percent && magnitude >= 10.0) || magnitude >= 100.0 {
+        format!("{value:.0}")
+    } else if magnitude == 0.0 {
+        "0".into()
+    } else if magnitude >= 1.0 {
+        format!("{value:.2}")
+    } else if magnitude >= 0.01 {
+        format!("{value:.3}")
+    } else {
+        format!("{value:.1e}")
+    }
+}
+
+/// Draws the colour bar of `noise` in the margin right of the image: the
+/// mode and unit above it, the values of its ends and middle beside it.
+/// Nothing if the margin is too narrow.
+fn draw_colour_bar(canvas: &mut Canvas, layout: &SlideLayout, noise: &FalseColour) {
+    let margin = layout.right_margin();
+    let size = 0.75 * layout.caption_size;
+    let (gap, bar_width) = (0.6 * size, 0.8 * size);
+    let ticks = [1.0f32, 0.5, 0.0].map(|t| (t, format_value(noise.value_at(t), noise.unit)));
+    let widest = ticks
+        .iter()
+        .map(|(_, label)| canvas::text_width(label, size))
+        .fold(0.0, f32::max);
+    let needed = gap + bar_width + gap + widest + layout.side_margin;
+    if (margin.width as f32) < needed {
+        return;
+    }
+    // the title: the mode, then the unit, on two lines
+    let left = margin.x as f32 + gap;
+    let room = margin.width as f32 - gap - layout.side_margin;
+    let line = canvas::ascent(size) + canvas::descent(size);
+    let title = [noise.view.mode.title(), noise.unit.symbol()];
+    for (k, text) in title.iter().enumerate() {
+        let (text, fitted) = canvas::fit_line(text, size, 0.6 * size, room);
+        let baseline = margin.y as f32 + canvas::ascent(size) + k as f32 * line;
+        canvas.draw_text(&text, fitted, (left, baseline), TEXT_COLOR, margin);
+    }
+    // the bar, top (the range's end) to bottom (its start), in the map's sRGB colours
+    let top = margin.y + (2.5 * line).ceil() as u32;
+    let bottom = margin.bottom().saturating_sub((0.5 * line).ceil() as u32);
+    if bottom <= top + 2 {
+        return;
+    }
+    let x = left.round() as u32;
+    let span = (bottom - top - 1) as f32;
+    for y in top..bottom {
+        let position = 1.0 - (y - top) as f32 / span;
+        let colour = noise
+            .map
+            .srgb(position)
+            .map(|c| (c.clamp(0.0, 1.0) * 255.0 + 0.5) as u8);
+        canvas.fill(Rect::new(x, y, bar_width.round() as u32, 1), colour);
+    }
+    let label_left = x as f32 + bar_width + gap;
+    for (t, label) in ticks {
+        let y = bottom as f32 - t * span;
+        let baseline = y + 0.35 * size;
+        canvas.draw_text(&label, size, (label_left, baseline), TEXT_COLOR, margin);
+    }
+}
+
+// ───────────────────────── GIF ─────────────────────────
+
+/// A convergence animation being written: frames at half the slide's size,
+/// looping.
+pub struct GifWriter {
+    path: PathBuf,
+    encoder: GifEncoder<BufWriter<File>>,
+}
+
+impl GifWriter {
+    /// Creates the GIF file at `path`.
+    pub fn create(path: &Path) -> Result<Self, ExportError> {
+        let fail = |e: &dyn std::fmt::Display| ExportError {
+            path: path.to_path_buf(),
+            problem: e.to_string(),
+        };
+        let file = File::create(path).map_err(|e| fail(&e))?;
+        let mut encoder = GifEncoder::new_with_speed(BufWriter::new(file), GIF_SPEED);
+        encoder.set_repeat(Repeat::Infinite).map_err(|e| fail(&e))?;
+        Ok(Self {
+            path: path.to_path_buf(),
+            encoder,
+        })
+    }
+
+    /// Appends `slide` at half its size, shown 0.7 s (2.1 s if it is the `last`).
+    pub fn push(&mut self, slide: &Canvas, last: bool) -> Result<(), ExportError> {
+        let half = slide.half().to_rgb_image();
+        let rgba = RgbaImage::from_fn(half.width(), half.height(), |x, y| {
+            let [r, g, b] = half.get_pixel(x, y).0;
+            image::Rgba([r, g, b, 255])
+        });
+        let ms = if last { LAST_FRAME_MS } else { FRAME_MS };
+        let frame = Frame::from_parts(rgba, 0, 0, Delay::from_numer_denom_ms(ms, 1));
+        self.encoder.encode_frame(frame).map_err(|e| ExportError {
+            path: self.path.clone(),
+            problem: e.to_string(),
+        })
+    }
+}
