@@ -21,7 +21,7 @@ use lumiere::tools::slides::{
     index_markdown, render_slide, settings_summary,
 };
 
-use super::{Failure, check_settings, load_scene, summary, worker_pool};
+use super::{Failure, check_settings, check_sources, load_scene, summary, worker_pool};
 
 /// The arguments of `lumiere lesson`.
 #[derive(Args)]
@@ -176,6 +176,7 @@ pub fn run(args: &LessonArgs) -> Result<(), Failure> {
                 scene
             }
         };
+        check_sources(&job.view.settings, &scene, &job.view.scene)?;
         bar.set_message(job.stem.clone());
         let slide = Slide::new(layout.clone(), &job.texts);
         let gif_path = dir.join(format!("{}.gif", job.stem));

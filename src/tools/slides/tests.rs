@@ -96,7 +96,7 @@ fn long_texts_are_set_smaller_then_cut_with_an_ellipsis() {
 }
 
 #[test]
-fn every_built_in_caption_fits_three_lines_at_full_size_on_a_full_hd_slide() {
+fn every_built_in_text_fits_at_full_size_on_a_full_hd_slide() {
     let layout = SlideLayout::new(1920, 1080);
     let lesson = Lesson::load("simulation-notions").unwrap();
     for lang in [Lang::Fr, Lang::En] {
@@ -106,6 +106,13 @@ fn every_built_in_caption_fits_three_lines_at_full_size_on_a_full_hd_slide() {
             assert!(lines.len() <= CAPTION_LINES, "step {}: {lines:?}", i + 1);
             let (_, size) = fit_line(&texts.title, layout.title_size, 0.0, layout.text_width());
             assert_eq!(size, layout.title_size, "step {} title", i + 1);
+            let (_, size) = fit_line(
+                &texts.formula,
+                layout.formula_size,
+                0.0,
+                layout.text_width(),
+            );
+            assert_eq!(size, layout.formula_size, "step {} formula", i + 1);
         }
     }
 }
