@@ -14,6 +14,7 @@ pub mod export;
 pub mod film;
 pub mod progressive;
 pub mod settings;
+pub mod settings_override;
 pub mod sidecar;
 
 use std::sync::atomic::{AtomicBool, Ordering};
