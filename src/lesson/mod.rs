@@ -156,6 +156,9 @@ impl Lesson {
         self.defaults.apply(&mut view);
         self.steps[index].settings.apply(&mut view);
         view.settings.validate()?;
+        if let Some(b) = view.split_settings() {
+            b.validate().map_err(|e| format!("split: {e}"))?;
+        }
         if let Some((x, y)) = view.probe {
             let (frame_width, frame_height) = PROBE_FRAME;
             if x >= frame_width || y >= frame_height {
