@@ -17,6 +17,9 @@ use crate::render::sidecar::Sidecar;
 pub struct ScreenshotJob {
     pub folder: PathBuf,
     pub snapshot: Arc<Snapshot>,
+    /// What the viewport shows when it is not `snapshot` alone (A | B):
+    /// the PNG is that image.
+    pub shown: Option<Arc<Snapshot>>,
     pub film: Option<Arc<Mutex<Film>>>,
     pub per_term_exr: bool,
     pub sidecar: Sidecar,
@@ -29,16 +32,25 @@ impl ScreenshotJob {
             .map_err(|e| format!("{}: {e}", self.folder.display()))?;
         let stem = self.free_stem();
         let snapshot = &self.snapshot;
-        let (width, height) = (snapshot.width, snapshot.height);
-        let radiance: Vec<Vec3> = snapshot
-            .radiance
-            .iter()
-            .map(|p| Vec3::new(p[0], p[1], p[2]))
-            .collect();
         let display = self.sidecar.display;
         let path = |suffix: &str| self.folder.join(format!("{stem}{suffix}"));
-        save_image(&path(".png"), width, height, &radiance, display).map_err(|e| e.to_string())?;
-        save_image(&path(".exr"), width, height, &radiance, display).map_err(|e| e.to_string())?;
+        let shown = self.shown.as_ref().unwrap_or(snapshot);
+        save_image(
+            &path(".png"),
+            shown.width,
+            shown.height,
+            &linear(shown),
+            display,
+        )
+        .map_err(|e| e.to_string())?;
+        save_image(
+            &path(".exr"),
+            snapshot.width,
+            snapshot.height,
+            &linear(snapshot),
+            display,
+        )
+        .map_err(|e| e.to_string())?;
         if self.per_term_exr
             && let Some(film) = &self.film
         {
@@ -70,6 +82,15 @@ impl ScreenshotJob {
             .find(|stem| !self.folder.join(format!("{stem}.png")).exists())
             .expect("some number is free")
     }
+}
+
+/// A snapshot's radiance as linear RGB.
+fn linear(snapshot: &Snapshot) -> Vec<Vec3> {
+    snapshot
+        .radiance
+        .iter()
+        .map(|p| Vec3::new(p[0], p[1], p[2]))
+        .collect()
 }
 
 /// Saves egui's screenshot of the whole window as a PNG.

@@ -12,6 +12,7 @@ mod export;
 mod interact;
 pub mod lesson_view;
 pub mod noise_view;
+mod override_ui;
 mod panels;
 pub mod probe_view;
 pub mod reference;
@@ -23,7 +24,6 @@ use std::sync::{Arc, Mutex};
 use eframe::egui;
 use serde::{Deserialize, Serialize};
 
-use crate::analysis::convergence::EstimatorKey;
 use crate::analysis::metrics::ReferenceImage;
 use crate::analysis::noise::{DisplayMode, NoiseView};
 use crate::render::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
@@ -46,8 +46,8 @@ pub struct ViewOptions {
     pub bench: bool,
     /// An EXR of the starting view to measure the error against.
     pub reference: Option<PathBuf>,
-    /// Compare with this second estimator from the start.
-    pub compare: Option<EstimatorKey>,
+    /// Compare from the start with B: A's settings with these changes.
+    pub compare: Option<crate::render::settings_override::SettingsOverride>,
     /// Open the convergence plot.
     pub convergence_plot: bool,
     /// What the image shows first (radiance or a noise view).
@@ -261,10 +261,10 @@ impl LumiereApp {
             lesson_view::open(&mut app, lesson, options.step);
         }
         app.errors.show_plot = options.convergence_plot;
-        if let Some(estimator) = options.compare {
+        if let Some(b) = options.compare {
             // B and the one-thread A start with the first frame (split::sync)
             app.compare.enabled = true;
-            app.compare.estimator = estimator;
+            app.compare.b = b;
         }
         if let Some(path) = &options.reference {
             reference::load_reference_exr(&mut app, &path.to_string_lossy())?;
@@ -496,6 +496,7 @@ impl LumiereApp {
         let job = export::ScreenshotJob {
             folder: PathBuf::from(&self.state.export_dir),
             snapshot,
+            shown: self.compare.composite().map(|c| Arc::clone(&c.image)),
             film: self.renderer.film(),
             per_term_exr: self.state.per_term_exr,
             sidecar: crate::render::sidecar::Sidecar {
@@ -505,6 +506,7 @@ impl LumiereApp {
                 display: self.state.display,
                 samples_per_pixel: 0,
                 edits: self.scene_edits(),
+                split: self.compare.enabled.then(|| self.compare.b.clone()),
             },
         };
         self.exports.push(std::thread::spawn(move || job.run()));

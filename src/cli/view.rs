@@ -7,7 +7,9 @@ use clap::Parser;
 use lumiere::analysis::noise::DisplayMode;
 use lumiere::analysis::path_view::PathSample;
 use lumiere::lesson::Lang;
-use lumiere::render::settings::{IndirectSampling, LightSampling, Sampler};
+use lumiere::render::settings::{
+    BrdfOverride, IndirectSampling, Integrator, LightMode, LightSampling, Sampler, TermSet,
+};
 
 use super::Failure;
 use super::options::SceneOptions;
@@ -34,15 +36,27 @@ pub struct ViewArgs {
     /// Open the convergence plot (error against spp and seconds).
     #[arg(long)]
     convergence_plot: bool,
-    /// Compare, for equal time, with a second estimator using this light sampling.
+    /// Compare, for equal time, with B: the image with this light sampling (A left, B right).
     #[arg(long)]
     compare_light_sampling: Option<LightSampling>,
-    /// The second estimator's indirect sampling (default: the first's).
+    /// B's indirect sampling (default: A's).
     #[arg(long)]
     compare_indirect_sampling: Option<IndirectSampling>,
-    /// The second estimator's sampler (default: the first's).
+    /// B's sampler (default: A's).
     #[arg(long)]
     compare_sampler: Option<Sampler>,
+    /// B's lights: authored, point or area (default: A's).
+    #[arg(long)]
+    compare_lights: Option<LightMode>,
+    /// B's BRDF override: authored, lambert, phong or mirror (default: A's).
+    #[arg(long)]
+    compare_brdf: Option<BrdfOverride>,
+    /// B's terms, e.g. L0,L1 (default: A's).
+    #[arg(long)]
+    compare_terms: Option<TermSet>,
+    /// B's integrator: fast or lecture (default: A's).
+    #[arg(long)]
+    compare_integrator: Option<Integrator>,
     /// What the image shows: image, standard-error, relative-error or sample-count.
     #[arg(long, default_value = "image")]
     display_mode: DisplayMode,
@@ -102,20 +116,18 @@ pub fn run(args: ViewArgs, restore: bool) -> Result<(), Failure> {
         }
         None => None,
     };
-    let comparing = args.compare_light_sampling.is_some()
-        || args.compare_indirect_sampling.is_some()
-        || args.compare_sampler.is_some();
-    let compare = comparing.then(|| {
-        let mut estimator = lumiere::analysis::convergence::EstimatorKey::of(&settings);
-        estimator.light_sampling = args
-            .compare_light_sampling
-            .unwrap_or(estimator.light_sampling);
-        estimator.indirect_sampling = args
-            .compare_indirect_sampling
-            .unwrap_or(estimator.indirect_sampling);
-        estimator.sampler = args.compare_sampler.unwrap_or(estimator.sampler);
-        estimator
-    });
+    let b = lumiere::render::settings_override::SettingsOverride {
+        light_sampling: args.compare_light_sampling,
+        indirect_sampling: args.compare_indirect_sampling,
+        sampler: args.compare_sampler,
+        light_mode: args.compare_lights,
+        brdf: args.compare_brdf,
+        terms: args.compare_terms,
+        integrator: args.compare_integrator,
+        ..Default::default()
+    };
+    check(&b.apply(&settings))?;
+    let compare = (!b.is_empty()).then_some(b);
     let options = lumiere::app::ViewOptions {
         scene: args.scene,
         settings,
