@@ -8,7 +8,7 @@ use std::process::Command;
 
 use lumiere::BrdfOverride;
 use lumiere::lesson::{Lang, Lesson};
-use lumiere::render::settings::{Integrator, LightMode, Sampler};
+use lumiere::render::settings::{Integrator, Layout, LightMode, Sampler};
 use lumiere::{Term, TermSet};
 
 fn lumiere() -> Command {
@@ -129,6 +129,20 @@ fn a_step_splits_the_image_with_the_changes_of_b() {
         problem.contains("line 11")
             && problem.contains("velvet")
             && problem.contains("authored, lambert, phong, mirror"),
+        "{problem}"
+    );
+    // a step shows the four-up or a split, not both
+    let four_up = one_step("layout = \"four-up\"");
+    let view = Lesson::parse(&four_up, "t")
+        .unwrap()
+        .view(0, 64, 48)
+        .unwrap();
+    assert_eq!(view.display.layout, Layout::FourUp);
+    let problem = refusal(&one_step(
+        "layout = \"four-up\"\n[steps.settings.split]\nbrdf = \"mirror\"",
+    ));
+    assert!(
+        problem.contains("either a split or the four-up"),
         "{problem}"
     );
     // an unknown key

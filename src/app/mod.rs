@@ -9,6 +9,7 @@ mod bench;
 mod convergence;
 pub mod display;
 mod export;
+pub mod four_up_view;
 mod interact;
 pub mod lesson_view;
 pub mod noise_view;
@@ -17,6 +18,7 @@ mod panels;
 pub mod probe_view;
 pub mod reference;
 pub mod split;
+mod viewport;
 
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
@@ -163,8 +165,10 @@ pub struct LumiereApp {
     pub reference: Option<Arc<ReferenceImage>>,
     /// What the reference is valid for, its capture, the errors and curves.
     pub errors: reference::ErrorTracking,
-    /// The equal-time comparison with a second estimator.
+    /// The A/B comparison with a second image.
     pub compare: split::Compare,
+    /// The four-up layout's image and tiles.
+    pub four_up: four_up_view::FourUpState,
     /// Number of the worker now rendering A (each spawn takes the next).
     renderer_serial: u64,
     spawned: u64,
@@ -212,6 +216,8 @@ impl LumiereApp {
             camera: camera.clone(),
             paused: false,
             stop_at_spp: options.exit_after_spp.or(state.stop_at_spp),
+            // the first frame asks for them if the four-up is shown
+            term_images: false,
         };
         let renderer = ProgressiveRenderer::spawn(request.clone(), move || ctx.request_repaint());
         let mut probe = probe_view::ProbeState::default();
@@ -245,6 +251,7 @@ impl LumiereApp {
             reference: None,
             errors: reference::ErrorTracking::default(),
             compare: split::Compare::default(),
+            four_up: four_up_view::FourUpState::default(),
             renderer_serial: 1,
             spawned: 1,
             noise_view: noise_view::NoiseViewState::default(),
@@ -300,6 +307,7 @@ impl LumiereApp {
             // a reference capture gets the cores to itself
             paused: self.paused || self.errors.capturing(),
             stop_at_spp: self.exit_after_spp.or(self.state.stop_at_spp),
+            term_images: four_up_view::active(self),
         }
     }
 
@@ -496,7 +504,11 @@ impl LumiereApp {
         let job = export::ScreenshotJob {
             folder: PathBuf::from(&self.state.export_dir),
             snapshot,
-            shown: self.compare.composite().map(|c| Arc::clone(&c.image)),
+            shown: match self.compare.composite() {
+                Some(composite) => export::Shown::Split(Arc::clone(&composite.image)),
+                None if four_up_view::active(self) => export::Shown::FourUp,
+                None => export::Shown::Image,
+            },
             film: self.renderer.film(),
             per_term_exr: self.state.per_term_exr,
             sidecar: crate::render::sidecar::Sidecar {
@@ -575,7 +587,7 @@ impl eframe::App for LumiereApp {
         }
         self.update_views(&ctx, &snapshot);
         let shown = split::shown_snapshot(self, &snapshot);
-        let image_rect = panels::viewport(self, ui, &shown);
+        let image_rect = viewport::viewport(self, ui, &shown);
         self.image_rect = Some(image_rect);
         lesson_view::overlay(self, &ctx, image_rect);
         convergence::plot_window(self, &ctx);
@@ -636,6 +648,7 @@ fn same_request(a: &ViewRequest, b: &ViewRequest) -> bool {
         && a.camera == b.camera
         && a.paused == b.paused
         && a.stop_at_spp == b.stop_at_spp
+        && a.term_images == b.term_images
 }
 
 /// Opens the viewer window and runs until it is closed.

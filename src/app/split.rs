@@ -119,6 +119,7 @@ fn request_b(app: &LumiereApp) -> ViewRequest {
     let mut request = app.view_request();
     request.settings = b_settings(app);
     request.stop_at_spp = None;
+    request.term_images = false;
     if let Some(b) = app.compare.snapshot() {
         let a = app.snapshot();
         let caught_up = a.idle && !a.preview && b.elapsed >= a.elapsed;
@@ -233,6 +234,7 @@ pub fn shown_snapshot(app: &mut LumiereApp, a: &Arc<Snapshot>) -> Arc<Snapshot> 
         preview: a.preview || b.preview,
         radiance: compose(a, &b, width, height, divider_column),
         terms: a.terms,
+        term_images: Default::default(),
         term_samples: a.term_samples,
         elapsed: a.elapsed,
         rays: a.rays,
@@ -302,6 +304,8 @@ pub fn overlay_ui(app: &mut LumiereApp, ui: &mut egui::Ui, rect: egui::Rect) {
             text("B", &b_label, &composite.b),
         ),
     ];
+    // readable from the back of a room: in proportion to the image
+    let size = (rect.height() / 36.0).clamp(12.0, 22.0);
     for (area, layout, text) in halves {
         if area.width() < 20.0 {
             continue;
@@ -313,8 +317,12 @@ pub fn overlay_ui(app: &mut LumiereApp, ui: &mut egui::Ui, rect: egui::Rect) {
                 .corner_radius(3.0)
                 .show(ui, |ui| {
                     ui.add(
-                        egui::Label::new(egui::RichText::new(text).color(egui::Color32::WHITE))
-                            .truncate(),
+                        egui::Label::new(
+                            egui::RichText::new(text)
+                                .size(size)
+                                .color(egui::Color32::WHITE),
+                        )
+                        .truncate(),
                     );
                 });
         });

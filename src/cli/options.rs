@@ -118,6 +118,7 @@ impl SceneOptions {
         DisplaySettings {
             exposure: self.exposure,
             tonemap: self.tonemap,
+            ..DisplaySettings::default()
         }
     }
 }

@@ -8,7 +8,7 @@ use lumiere::analysis::noise::DisplayMode;
 use lumiere::analysis::path_view::PathSample;
 use lumiere::lesson::Lang;
 use lumiere::render::settings::{
-    BrdfOverride, IndirectSampling, Integrator, LightMode, LightSampling, Sampler, TermSet,
+    BrdfOverride, IndirectSampling, Integrator, Layout, LightMode, LightSampling, Sampler, TermSet,
 };
 
 use super::Failure;
@@ -60,6 +60,9 @@ pub struct ViewArgs {
     /// What the image shows: image, standard-error, relative-error or sample-count.
     #[arg(long, default_value = "image")]
     display_mode: DisplayMode,
+    /// The image's layout: single, or four-up (L0 | L1 | L2 | their sum, from one render).
+    #[arg(long, default_value = "single")]
+    layout: Layout,
     /// Probe the pixel at X,Y (from the top left) from the start.
     #[arg(long, value_parser = parse_pixel)]
     probe: Option<(u32, u32)>,
@@ -128,10 +131,19 @@ pub fn run(args: ViewArgs, restore: bool) -> Result<(), Failure> {
     };
     check(&b.apply(&settings))?;
     let compare = (!b.is_empty()).then_some(b);
+    if compare.is_some() && args.layout == Layout::FourUp {
+        return Err(Failure::usage_message(
+            "--layout four-up shows the terms of one render; it cannot be combined with --compare-…",
+        ));
+    }
+    let display = lumiere::render::settings::DisplaySettings {
+        layout: args.layout,
+        ..args.options.display()
+    };
     let options = lumiere::app::ViewOptions {
         scene: args.scene,
         settings,
-        display: args.options.display(),
+        display,
         exit_after_spp: args.exit_after_spp,
         screenshot: args.screenshot,
         restore,

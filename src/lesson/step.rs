@@ -5,7 +5,7 @@ use serde::Deserialize;
 
 use crate::analysis::noise::DisplayMode;
 use crate::render::settings::{
-    BrdfOverride, DisplaySettings, IndirectSampling, Integrator, LightMode, LightSampling,
+    BrdfOverride, DisplaySettings, IndirectSampling, Integrator, Layout, LightMode, LightSampling,
     MisHeuristic, RenderSettings, Sampler, TermSet, Tonemap,
 };
 use crate::render::settings_override::{SettingsOverride, named};
@@ -49,6 +49,9 @@ pub struct StepSettings {
     pub tonemap: Option<Tonemap>,
     #[serde(default, with = "named")]
     pub display: Option<DisplayMode>,
+    /// `four-up`: L0 | L1 | L2 | their sum.
+    #[serde(default, with = "named")]
+    pub layout: Option<Layout>,
     /// A pixel to probe, [x, y] from the top left: its samples' paths are drawn.
     pub probe: Option<[u32; 2]>,
     /// Split the image: A (the settings above) left, B (these changes to
@@ -122,6 +125,7 @@ impl StepSettings {
         set(&mut view.display.exposure, &self.exposure);
         set(&mut view.display.tonemap, &self.tonemap);
         set(&mut view.display_mode, &self.display);
+        set(&mut view.display.layout, &self.layout);
         if let Some([x, y]) = self.probe {
             view.probe = Some((x, y));
         }

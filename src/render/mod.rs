@@ -12,6 +12,7 @@ pub mod color;
 pub mod context;
 pub mod export;
 pub mod film;
+pub mod four_up;
 pub mod progressive;
 pub mod settings;
 pub mod settings_override;
