@@ -493,8 +493,9 @@ fn the_four_up_shows_each_term_and_their_sum_from_one_render() {
     }
     // the sum tile is the three others added, where no value clips
     let mut compared = 0;
-    for i in 0..tiles[3].len() {
-        let [Some(l0), Some(l1), Some(l2), Some(sum)] = [0, 1, 2, 3].map(|t| tiles[t][i]) else {
+    let pixels = tiles[0].iter().zip(&tiles[1]).zip(&tiles[2]).zip(&tiles[3]);
+    for (i, (((l0, l1), l2), sum)) in pixels.enumerate() {
+        let (Some(l0), Some(l1), Some(l2), Some(sum)) = (l0, l1, l2, sum) else {
             continue;
         };
         if sum.contains(&255) {
