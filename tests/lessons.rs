@@ -252,10 +252,17 @@ fn the_documented_example_is_a_valid_lesson() {
         .and_then(|rest| rest.split("```").next())
         .expect("a ```toml block");
     let lesson = Lesson::parse(example, "docs/lessons.md").unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(lesson.steps.len(), 2);
+    assert_eq!(lesson.steps.len(), 3);
     let point = lesson.view(1, 64, 48).unwrap();
     assert_eq!(point.settings.light_mode, LightMode::Point);
     assert_eq!(point.settings.terms, TermSet::only(Term::L1));
+    assert_eq!(point.split, None);
+    let both = lesson.view(2, 64, 48).unwrap();
+    assert_eq!(both.settings.light_mode, LightMode::Point);
+    assert_eq!(
+        both.split_settings().map(|b| b.light_mode),
+        Some(LightMode::Area)
+    );
 }
 
 /// Every scene of the library loads by name and renders without invalid
