@@ -36,25 +36,25 @@ pub struct ViewArgs {
     /// Open the convergence plot (error against spp and seconds).
     #[arg(long)]
     convergence_plot: bool,
-    /// Compare, for equal time, with B: the image with this light sampling (A left, B right).
+    /// Compare with B, A's settings with this light sampling: A left, B right, for the same time.
     #[arg(long)]
     compare_light_sampling: Option<LightSampling>,
-    /// B's indirect sampling (default: A's).
+    /// Compare with B, A's settings with this indirect sampling.
     #[arg(long)]
     compare_indirect_sampling: Option<IndirectSampling>,
-    /// B's sampler (default: A's).
+    /// Compare with B, A's settings with this sampler.
     #[arg(long)]
     compare_sampler: Option<Sampler>,
-    /// B's lights: authored, point or area (default: A's).
+    /// Compare with B, A's settings with these lights: authored, point or area.
     #[arg(long)]
     compare_lights: Option<LightMode>,
-    /// B's BRDF override: authored, lambert, phong or mirror (default: A's).
+    /// Compare with B, A's settings with this BRDF: authored, lambert, phong or mirror.
     #[arg(long)]
     compare_brdf: Option<BrdfOverride>,
-    /// B's terms, e.g. L0,L1 (default: A's).
+    /// Compare with B, A's settings with these terms, e.g. L0,L1.
     #[arg(long)]
     compare_terms: Option<TermSet>,
-    /// B's integrator: fast or lecture (default: A's).
+    /// Compare with B, A's settings with this integrator: fast or lecture.
     #[arg(long)]
     compare_integrator: Option<Integrator>,
     /// What the image shows: image, standard-error, relative-error or sample-count.
