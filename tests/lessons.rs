@@ -6,8 +6,9 @@ mod common;
 
 use std::process::Command;
 
+use lumiere::BrdfOverride;
 use lumiere::lesson::{Lang, Lesson};
-use lumiere::render::settings::{LightMode, Sampler};
+use lumiere::render::settings::{Integrator, Layout, LightMode, Sampler};
 use lumiere::{Term, TermSet};
 
 fn lumiere() -> Command {
@@ -94,6 +95,78 @@ fn steps_set_only_what_they_say_over_the_lessons_defaults() {
     let lesson = Lesson::parse(&probed, "test.toml").unwrap();
     assert_eq!(lesson.view(0, 64, 48).unwrap().probe, Some((32, 40)));
     assert_eq!(lesson.view(0, 640, 480).unwrap().probe, Some((320, 400)));
+}
+
+/// `[steps.settings.split]`: B's changes to the step's settings, with the
+/// command line's names; a step without it shows no split.
+#[test]
+fn a_step_splits_the_image_with_the_changes_of_b() {
+    let text = one_step(
+        "terms = \"L1\"\nlights = \"point\"\n[steps.settings.split]\nlights = \"area\"\nbrdf = \"mirror\"\nterms = \"L0,L1\"\nintegrator = \"lecture\"",
+    );
+    let lesson = Lesson::parse(&text, "test.toml").unwrap_or_else(|e| panic!("{e}"));
+    let view = lesson.view(0, 64, 48).unwrap();
+    let split = view.split.clone().expect("the step splits the image");
+    assert_eq!(split.light_mode, Some(LightMode::Area));
+    assert_eq!(split.brdf, Some(BrdfOverride::Mirror));
+    assert_eq!(split.integrator, Some(Integrator::Lecture));
+    assert_eq!(
+        split.terms,
+        Some(TermSet::only(Term::L0).with(Term::L1, true))
+    );
+    assert_eq!(split.light_sampling, None);
+    // A is the step's settings; B is A with the changes
+    assert_eq!(view.settings.light_mode, LightMode::Point);
+    let b = view.split_settings().unwrap();
+    assert_eq!(
+        (b.light_mode, b.brdf),
+        (LightMode::Area, BrdfOverride::Mirror)
+    );
+    assert_eq!(b.seed, view.settings.seed);
+    assert_eq!(
+        lumiere::render::settings_override::side_labels(&view.settings, &b).1,
+        "L0+L1, extended lights, mirror, lecture integrator"
+    );
+    assert_eq!(
+        Lesson::parse(&one_step(""), "t")
+            .unwrap()
+            .view(0, 64, 48)
+            .unwrap()
+            .split,
+        None
+    );
+
+    // an unknown value: its line and the choices
+    let problem = refusal(&one_step("[steps.settings.split]\nbrdf = \"velvet\""));
+    assert!(
+        problem.contains("line 11")
+            && problem.contains("velvet")
+            && problem.contains("authored, lambert, phong, mirror"),
+        "{problem}"
+    );
+    // a step shows the four-up or a split, not both
+    let four_up = one_step("layout = \"four-up\"");
+    let view = Lesson::parse(&four_up, "t")
+        .unwrap()
+        .view(0, 64, 48)
+        .unwrap();
+    assert_eq!(view.display.layout, Layout::FourUp);
+    let problem = refusal(&one_step(
+        "layout = \"four-up\"\n[steps.settings.split]\nbrdf = \"mirror\"",
+    ));
+    assert!(
+        problem.contains("either a split or the four-up"),
+        "{problem}"
+    );
+    // an unknown key
+    let problem = refusal(&one_step("[steps.settings.split]\nseed = 3"));
+    assert!(problem.contains("unknown field `seed`"), "{problem}");
+    // B's settings out of range: the step, and that it is the split's
+    let problem = refusal(&one_step("[steps.settings.split]\nlight_samples = 1000"));
+    assert!(
+        problem.contains("step 1") && problem.contains("split: light samples 1000"),
+        "{problem}"
+    );
 }
 
 #[test]
@@ -203,10 +276,17 @@ fn the_documented_example_is_a_valid_lesson() {
         .and_then(|rest| rest.split("```").next())
         .expect("a ```toml block");
     let lesson = Lesson::parse(example, "docs/lessons.md").unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(lesson.steps.len(), 2);
+    assert_eq!(lesson.steps.len(), 3);
     let point = lesson.view(1, 64, 48).unwrap();
     assert_eq!(point.settings.light_mode, LightMode::Point);
     assert_eq!(point.settings.terms, TermSet::only(Term::L1));
+    assert_eq!(point.split, None);
+    let both = lesson.view(2, 64, 48).unwrap();
+    assert_eq!(both.settings.light_mode, LightMode::Point);
+    assert_eq!(
+        both.split_settings().map(|b| b.light_mode),
+        Some(LightMode::Area)
+    );
 }
 
 /// Every scene of the library loads by name and renders without invalid

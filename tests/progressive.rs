@@ -20,6 +20,7 @@ fn request() -> ViewRequest {
         },
         paused: false,
         stop_at_spp: None,
+        term_images: false,
     }
 }
 
@@ -165,4 +166,51 @@ fn a_change_of_what_the_lights_are_built_from_rebuilds_them() {
             && s.samples_per_pixel() >= 2
     });
     assert!(on.radiance.iter().any(|l| l[0] > 0.0));
+}
+
+/// Asked for them, the worker publishes each visible term's image beside
+/// their sum, without restarting the film; the sum is theirs, pixel by pixel.
+#[test]
+fn term_images_come_with_the_sum_and_do_not_restart() {
+    let mut request = request();
+    let renderer = ProgressiveRenderer::spawn(request.clone(), || {});
+    let first = wait_for(&renderer, "2 spp", |s| s.samples_per_pixel() >= 2);
+    assert!(first.term_images.iter().all(Option::is_none));
+    request.term_images = true;
+    renderer.request(request.clone());
+    let with = wait_for(&renderer, "the term images", |s| {
+        s.term_images.iter().any(Option::is_some) && !s.preview
+    });
+    assert_eq!(with.restarts, first.restarts);
+    for term in Term::ALL {
+        assert_eq!(
+            with.term_images[term.index()].is_some(),
+            with.terms.contains(term),
+            "{term}"
+        );
+    }
+    for (i, sum) in with.radiance.iter().enumerate() {
+        for c in 0..3 {
+            let added: f32 = with
+                .term_images
+                .iter()
+                .flatten()
+                .map(|image| image[i][c])
+                .sum();
+            assert!(
+                (added - sum[c]).abs() <= 1e-6 * sum[c].max(1.0),
+                "pixel {i}: {added} against {}",
+                sum[c]
+            );
+        }
+    }
+    // a hidden term has no image
+    request.settings.terms = TermSet::COURSE.with(Term::L1, false);
+    renderer.request(request.clone());
+    let hidden = wait_for(&renderer, "L1 hidden", |s| {
+        s.terms == request.settings.terms
+    });
+    assert!(hidden.term_images[Term::L1.index()].is_none());
+    assert!(hidden.term_images[Term::L2.index()].is_some());
+    assert_eq!(hidden.restarts, first.restarts);
 }

@@ -239,6 +239,7 @@ fn cli_render_reproduces_a_sidecar() {
         display: Default::default(),
         samples_per_pixel: 3,
         edits: Default::default(),
+        split: None,
     };
     let json = temp_path("shot.json");
     sidecar.save(&json).unwrap();
@@ -324,6 +325,7 @@ fn cli_render_reproduces_the_scene_edits_of_a_sidecar() {
         display: Default::default(),
         samples_per_pixel: 2,
         edits,
+        split: None,
     };
     let json = temp_path("edited.json");
     sidecar.save(&json).unwrap();

@@ -127,6 +127,7 @@ fn thousands_of_random_setting_changes_never_block_crash_or_grow_memory() {
         },
         paused: false,
         stop_at_spp: None,
+        term_images: false,
     };
     let renderer = ProgressiveRenderer::spawn_with_threads(first, Some(2), || {});
     let mut numbers = Numbers(0x9e37_79b9_7f4a_7c15);
@@ -141,6 +142,8 @@ fn thousands_of_random_setting_changes_never_block_crash_or_grow_memory() {
             scene,
             paused: numbers.chance(10),
             stop_at_spp: numbers.chance(3).then(|| 1 + numbers.below(4) as u32),
+            // the four-up's images of each term, now and then
+            term_images: numbers.chance(3),
         };
         let start = Instant::now();
         renderer.request(request);
@@ -175,6 +178,7 @@ fn thousands_of_random_setting_changes_never_block_crash_or_grow_memory() {
         scene,
         paused: false,
         stop_at_spp: None,
+        term_images: true,
     });
     wait_for(&renderer, "the last request's image", |s| {
         s.source

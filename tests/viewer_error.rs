@@ -10,7 +10,8 @@ use egui_kittest::kittest::Queryable;
 use lumiere::analysis::convergence::EstimatorKey;
 use lumiere::app::{LumiereApp, ViewOptions};
 use lumiere::render::settings::LightSampling;
-use lumiere::{RenderSettings, Term};
+use lumiere::render::settings_override::SettingsOverride;
+use lumiere::{BrdfOverride, RenderSettings, Term};
 
 fn harness(width: u32, height: u32) -> Harness<'static, LumiereApp> {
     let options = ViewOptions {
@@ -143,8 +144,11 @@ fn compare_shows_a_left_and_b_right_for_equal_time() {
     harness.run_steps(2);
     harness.get_by_label("B light sampling");
     assert_eq!(
-        harness.state().compare.estimator.light_sampling,
-        LightSampling::Area
+        harness.state().compare.b,
+        SettingsOverride {
+            light_sampling: Some(LightSampling::Area),
+            ..Default::default()
+        }
     );
     wait_for(&mut harness, "both halves rendered", |app| {
         app.compare.composite().is_some_and(|c| {
@@ -154,8 +158,18 @@ fn compare_shows_a_left_and_b_right_for_equal_time() {
                 && c.b.samples_per_pixel() >= 2
         })
     });
-    assert_eq!(harness.get_all_by_label_contains("A · mis·").count(), 1);
-    assert_eq!(harness.get_all_by_label_contains("B · area·").count(), 1);
+    assert_eq!(
+        harness
+            .get_all_by_label_contains("A: mis light sampling · ")
+            .count(),
+        1
+    );
+    assert_eq!(
+        harness
+            .get_all_by_label_contains("B: area light sampling · ")
+            .count(),
+        1
+    );
 
     let composite = harness.state().compare.composite().unwrap().clone();
     let (a, b, image) = (&composite.a, &composite.b, &composite.image);
@@ -204,4 +218,98 @@ fn compare_shows_a_left_and_b_right_for_equal_time() {
     harness.run_steps(3);
     assert!(harness.state().compare.composite().is_none());
     assert!(harness.state().compare.snapshot().is_none());
+}
+
+/// B = A with mirrors for every material: the setting reaches B's worker
+/// (and only it), each half is labelled with its material, and the halves
+/// differ where the material matters: the floor, lit directly in A, is a
+/// mirror in B that shows little with L0 + L1 + L2.
+#[test]
+fn compare_b_with_another_material_labels_each_half_with_its_own() {
+    let (width, height) = (48, 36);
+    let mut harness = harness(width, height);
+    harness.get_by_label("Comparison").click();
+    harness.run_steps(2);
+    harness.get_by_label("Compare").click();
+    harness.run_steps(2);
+    harness.get_by_label("B light sampling").click();
+    harness.run_steps(2);
+    harness.get_by_label("as A (mis)").click();
+    harness.run_steps(2);
+    harness.get_by_label("B material").click();
+    harness.run_steps(2);
+    harness.get_by_label("mirror").click();
+    harness.run_steps(2);
+    assert_eq!(
+        harness.state().compare.b,
+        SettingsOverride {
+            brdf: Some(BrdfOverride::Mirror),
+            ..Default::default()
+        }
+    );
+    wait_for(&mut harness, "both halves, B in mirrors", |app| {
+        app.compare.composite().is_some_and(|c| {
+            c.b.source
+                .as_ref()
+                .is_some_and(|s| s.settings.brdf == BrdfOverride::Mirror)
+                && !c.a.preview
+                && !c.b.preview
+                && c.a.samples_per_pixel() >= 4
+                && c.b.samples_per_pixel() >= 4
+        })
+    });
+    harness.run_steps(2);
+    assert_eq!(
+        harness
+            .get_all_by_label_contains("A: authored materials · ")
+            .count(),
+        1
+    );
+    assert_eq!(harness.get_all_by_label_contains("B: mirror · ").count(), 1);
+
+    let composite = harness.state().compare.composite().unwrap().clone();
+    let a_settings = composite.a.source.as_ref().unwrap().settings.clone();
+    let b_settings = composite.b.source.as_ref().unwrap().settings.clone();
+    assert_eq!(a_settings.brdf, BrdfOverride::Authored);
+    // B is A but for its material and its seed
+    assert_eq!(
+        RenderSettings {
+            brdf: a_settings.brdf,
+            seed: a_settings.seed,
+            ..b_settings.clone()
+        },
+        a_settings
+    );
+    assert_ne!(b_settings.seed, a_settings.seed);
+    // the floor: the bottom sixth of the image, both halves
+    let floor_mean = |snapshot: &lumiere::render::progressive::Snapshot| {
+        let rows = height as usize * 5 / 6..height as usize;
+        let pixels: Vec<f32> = rows
+            .flat_map(|y| (0..width as usize).map(move |x| y * width as usize + x))
+            .map(|i| {
+                let p = snapshot.radiance[i];
+                lumiere::render::color::luminance(glam::Vec3::new(p[0], p[1], p[2]))
+            })
+            .collect();
+        pixels.iter().sum::<f32>() / pixels.len() as f32
+    };
+    let (a_floor, b_floor) = (floor_mean(&composite.a), floor_mean(&composite.b));
+    assert!(
+        b_floor < 0.5 * a_floor,
+        "the floor: {a_floor} in Lambert (A), {b_floor} in mirrors (B)"
+    );
+    // and the composed image shows B right of the divider
+    let image = &composite.image;
+    let divider = composite.divider_column as usize;
+    for y in 0..height as usize {
+        for x in 0..width as usize {
+            let i = y * width as usize + x;
+            let from = if x < divider {
+                &composite.a
+            } else {
+                &composite.b
+            };
+            assert_eq!(image.radiance[i], from.radiance[i], "pixel {x},{y}");
+        }
+    }
 }

@@ -6,9 +6,9 @@
 use eframe::egui;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use lumiere::RenderSettings;
 use lumiere::app::{LumiereApp, ViewOptions};
 use lumiere::lesson::{Lang, Lesson};
+use lumiere::{LightMode, RenderSettings};
 
 #[path = "common/viewer.rs"]
 mod viewer;
@@ -267,4 +267,65 @@ fn the_scene_library_shows_thumbnails_and_loads_the_scene_clicked() {
 
 fn harness_scene_name() -> String {
     lumiere::scene::builtin::load("penumbra").unwrap().name
+}
+
+/// The step comparing point and extended lights splits the image: A with
+/// point lights left, B with extended ones right, each reaching its own
+/// worker and labelled; the next step, which has no split, shows A alone.
+#[test]
+fn a_step_with_a_split_shows_a_and_b_and_the_next_step_a_alone() {
+    let lesson = Lesson::load("simulation-notions").unwrap();
+    let index = lesson
+        .steps
+        .iter()
+        .position(|s| s.slug == "point-and-extended")
+        .expect("the step comparing point and extended lights");
+    let view = lesson.view(index, WIDTH, HEIGHT).unwrap();
+    let mut b = view.split_settings().expect("the step splits the image");
+    assert_eq!(view.settings.light_mode, LightMode::Point);
+    assert_eq!(b.light_mode, LightMode::Area);
+    b.seed += 1;
+    let mut harness = lesson_harness(index, Lang::En);
+    assert!(harness.state().compare.enabled);
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    loop {
+        harness.step();
+        let shown = harness.state().compare.composite().is_some_and(|c| {
+            let settings = |s: &lumiere::render::progressive::Snapshot| {
+                s.source.as_ref().map(|source| source.settings.clone())
+            };
+            settings(&c.a) == Some(view.settings.clone())
+                && settings(&c.b) == Some(b.clone())
+                && !c.a.preview
+                && !c.b.preview
+        });
+        if shown {
+            break;
+        }
+        assert!(
+            std::time::Instant::now() < deadline,
+            "timed out waiting for A and B"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    harness.run_steps(2);
+    assert_eq!(
+        harness
+            .get_all_by_label_contains("A: point lights · ")
+            .count(),
+        1
+    );
+    assert_eq!(
+        harness
+            .get_all_by_label_contains("B: extended lights · ")
+            .count(),
+        1
+    );
+
+    harness.key_press(egui::Key::ArrowRight);
+    harness.run_steps(2);
+    assert_eq!(harness.state().lesson.step, index + 1);
+    assert!(!harness.state().compare.enabled);
+    assert!(harness.state().compare.snapshot().is_none());
+    assert!(harness.query_by_label_contains("B: ").is_none());
 }

@@ -6,20 +6,22 @@
 
 use std::ops::RangeInclusive;
 
+use eframe::egui;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::{Vec2, Vec3};
 use lumiere::app::LumiereApp;
+use lumiere::app::four_up_view::TileView;
 use lumiere::render::color::{linear_to_srgb, luminance, srgb_to_linear};
 use lumiere::render::progressive::Snapshot;
-use lumiere::render::settings::DisplaySettings;
+use lumiere::render::settings::{DisplaySettings, Layout};
 use lumiere::render::{Budget, render};
 use lumiere::scene::builtin;
 use lumiere::{BrdfOverride, Film, LightMode, RenderContext, Term, TermSet};
 
 #[path = "common/viewer.rs"]
 mod viewer_harness;
-use viewer_harness::{WindowShot, harness, harness_with_film, wait_for};
+use viewer_harness::{WindowShot, harness, harness_with_film, harness_with_window, wait_for};
 
 /// Steps the UI until the worker is idle with `done` true, then photographs
 /// the window once a frame has drawn that snapshot.
@@ -377,4 +379,222 @@ fn the_mirror_brdf_restarts_and_changes_the_blocks() {
         change.abs() > 10.0 * noise + rounding,
         "the blocks' luminance changed by {change:.4} (noise {noise:.4}, rounding {rounding:.4})"
     );
+}
+
+/// The colour on screen of each film pixel of a four-up tile, row by row;
+/// `None` under the tile's label.
+fn tile_colours(shot: &WindowShot, view: &TileView, ppp: f32) -> Vec<Option<[u8; 3]>> {
+    let rect = view.rect * ppp;
+    let label = view.label_rect.map(|r| r.expand(2.0) * ppp);
+    let (width, height) = (shot.film_width, shot.film_height);
+    (0..height)
+        .flat_map(|y| (0..width).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let point = rect.min
+                + egui::vec2(
+                    (x as f32 + 0.5) / width as f32 * rect.width(),
+                    (y as f32 + 0.5) / height as f32 * rect.height(),
+                );
+            if label.is_some_and(|l| l.contains(point)) {
+                return None;
+            }
+            let p = shot.window.get_pixel(point.x as u32, point.y as u32);
+            Some([p[0], p[1], p[2]])
+        })
+        .collect()
+}
+
+/// The 8-bit sRGB code the blit gives a linear `value` (default display).
+fn code_of(value: f32) -> f64 {
+    255.0 * linear_to_srgb(displayed(Vec3::splat(value))[0] as f32) as f64
+}
+
+/// Asserts that the film pixels of a tile on screen (where no label covers
+/// them) show `image` within `CODE_ERROR` codes.
+fn assert_tile_shows(tile: &[Option<[u8; 3]>], image: &[[f32; 4]], what: &str) {
+    for (i, (shown, value)) in tile.iter().zip(image).enumerate() {
+        if let Some(shown) = shown {
+            for (&code, &value) in shown.iter().zip(value) {
+                assert!(
+                    (code as f64 - code_of(value)).abs() <= CODE_ERROR,
+                    "pixel {i} of the {what} tile shows {shown:?}, {value} is {:.1}",
+                    code_of(value)
+                );
+            }
+        }
+    }
+}
+
+/// The four-up: four labelled tiles of one render. L0's is black but for
+/// the light; each tile shows its own term of the worker's snapshot; the
+/// sum tile is, pixel by pixel, the three others added (within the 8-bit
+/// rounding, where nothing clips); switched off, L2 leaves an empty tile
+/// saying "off" and the sum loses it.
+#[test]
+fn the_four_up_shows_each_term_and_their_sum_from_one_render() {
+    let mut harness = harness();
+    harness.state_mut().state.stop_at_spp = Some(16);
+    harness.get_by_label("four-up").click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().state.display.layout, Layout::FourUp);
+    let (snapshot, shot) = shot_when(&mut harness, "16 spp of each term", |s| {
+        s.samples_per_pixel() >= 16 && s.term_images[..3].iter().all(Option::is_some)
+    });
+    let ppp = harness.ctx.pixels_per_point();
+    let views = harness.state().four_up.tiles.clone();
+    assert_eq!(
+        views.iter().map(|v| v.label.as_str()).collect::<Vec<_>>(),
+        [
+            "L0 emission",
+            "L1 direct",
+            "L2 indirect (one bounce)",
+            "L0+L1+L2"
+        ]
+    );
+    for view in &views {
+        harness.get_by_label(&view.label);
+        assert!(!view.off && view.label_rect.is_some());
+    }
+    // 2 × 2 in this tall window, the tiles of equal size and aligned
+    let [a, b, c, d] = [0, 1, 2, 3].map(|i| views[i].rect);
+    assert!(a.min.y == b.min.y && c.min.y == d.min.y && c.min.y >= a.max.y - 0.01);
+    assert!(a.min.x == c.min.x && b.min.x == d.min.x && b.min.x >= a.max.x - 0.01);
+    assert!(
+        views
+            .iter()
+            .all(|v| (v.rect.size() - a.size()).length() < 0.01)
+    );
+
+    let tiles: Vec<Vec<Option<[u8; 3]>>> = views
+        .iter()
+        .map(|view| tile_colours(&shot, view, ppp))
+        .collect();
+    // each term's tile shows that term of the worker's snapshot
+    let term = |t: Term| snapshot.term_images[t.index()].as_ref().unwrap();
+    assert_tile_shows(&tiles[0], term(Term::L0), "L0");
+    assert_tile_shows(&tiles[1], term(Term::L1), "L1");
+    assert_tile_shows(&tiles[2], term(Term::L2), "L2");
+    assert_tile_shows(&tiles[3], &snapshot.radiance, "sum");
+    // L0: black but for the light, a small part of the image
+    let lit = tiles[0]
+        .iter()
+        .flatten()
+        .filter(|c| **c != [0, 0, 0])
+        .count();
+    let seen = tiles[0].iter().flatten().count();
+    assert!(
+        lit > 0 && lit * 20 < seen,
+        "{lit} of {seen} pixels of L0 are not black"
+    );
+    for (shown, value) in tiles[0].iter().zip(term(Term::L0)) {
+        if shown.is_some_and(|c| c != [0, 0, 0]) {
+            assert!(value[..3].iter().any(|&v| v > 0.0), "L0 is 0 there");
+        }
+    }
+    // the sum tile is the three others added, where no value clips
+    let mut compared = 0;
+    let pixels = tiles[0].iter().zip(&tiles[1]).zip(&tiles[2]).zip(&tiles[3]);
+    for (i, (((l0, l1), l2), sum)) in pixels.enumerate() {
+        let (Some(l0), Some(l1), Some(l2), Some(sum)) = (l0, l1, l2, sum) else {
+            continue;
+        };
+        if sum.contains(&255) {
+            continue;
+        }
+        compared += 1;
+        for k in 0..3 {
+            let added = to_linear(l0[k]) + to_linear(l1[k]) + to_linear(l2[k]);
+            let tolerance = [l0[k], l1[k], l2[k], sum[k]]
+                .map(linear_error)
+                .iter()
+                .sum::<f64>();
+            assert!(
+                (to_linear(sum[k]) - added).abs() <= tolerance,
+                "pixel {i}: the sum shows {}, L0 + L1 + L2 shows {added} (± {tolerance})",
+                to_linear(sum[k])
+            );
+        }
+    }
+    assert!(compared > tiles[3].len() / 2, "{compared} pixels compared");
+
+    // L2 off: its tile empty, saying so; the sum without it; no restart
+    harness.get_by_label("L2").click();
+    harness.run_steps(2);
+    let (without, shot) = shot_when(&mut harness, "the image without L2", |s| {
+        !s.terms.contains(Term::L2)
+    });
+    assert_eq!(without.restarts, snapshot.restarts);
+    let views = harness.state().four_up.tiles.clone();
+    assert!(views[2].off && !views[0].off && !views[1].off && !views[3].off);
+    assert_eq!(views[3].label, "L0+L1");
+    harness.get_by_label("off");
+    harness.get_by_label("L0+L1");
+    // "off" is written in the middle: the rest of the tile is the background
+    let empty = tile_colours(&shot, &views[2], ppp);
+    let (width, rows) = (shot.film_width as usize, shot.film_height as usize);
+    for (i, colour) in empty.iter().enumerate() {
+        let y = i / width;
+        if let Some(colour) = colour
+            && (y < rows / 3 || y >= 2 * rows / 3)
+        {
+            assert_eq!(*colour, [24, 24, 24], "pixel {i} of the empty tile");
+        }
+    }
+    let sum = tile_colours(&shot, &views[3], ppp);
+    assert_tile_shows(&sum, &without.radiance, "L0+L1");
+}
+
+/// A wide viewport takes the four tiles in a row; a screenshot's PNG holds
+/// the four tiles in a row, labelled below, and its sidecar the layout.
+#[test]
+fn the_four_up_is_a_row_in_a_wide_window_and_in_the_screenshot() {
+    let mut harness = harness_with_window(64, 48, [2400.0, 620.0]);
+    harness.state_mut().state.stop_at_spp = Some(4);
+    harness.key_press(egui::Key::Num4);
+    harness.run_steps(2);
+    assert_eq!(harness.state().state.display.layout, Layout::FourUp);
+    shot_when(&mut harness, "4 spp of each term", |s| {
+        s.samples_per_pixel() >= 4 && s.term_images[..3].iter().all(Option::is_some)
+    });
+    let views = harness.state().four_up.tiles.clone();
+    assert_eq!(views.len(), 4);
+    for pair in views.windows(2) {
+        assert_eq!(pair[0].rect.min.y, pair[1].rect.min.y);
+        assert!(pair[1].rect.min.x >= pair[0].rect.max.x - 0.01);
+    }
+
+    let folder = std::env::temp_dir().join(format!("lumiere-four-up-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&folder);
+    harness.state_mut().state.export_dir = folder.to_string_lossy().into_owned();
+    harness.state_mut().save_screenshot();
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    while !harness
+        .state()
+        .message
+        .as_deref()
+        .is_some_and(|m| m.starts_with("saved"))
+    {
+        assert!(
+            std::time::Instant::now() < deadline,
+            "{:?}",
+            harness.state().message
+        );
+        harness.step();
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    let png = image::open(folder.join("lumiere-001.png"))
+        .unwrap()
+        .to_rgb8();
+    assert_eq!(png.width(), 4 * 64);
+    assert!(png.height() > 48, "the labels' band below the tiles");
+    let sidecar =
+        lumiere::render::sidecar::Sidecar::load(&folder.join("lumiere-001.json")).unwrap();
+    assert_eq!(sidecar.display.layout, Layout::FourUp);
+    let exr = lumiere::render::export::load_exr(&folder.join("lumiere-001.exr")).unwrap();
+    assert_eq!(
+        (exr.0, exr.1),
+        (64, 48),
+        "the EXR is the image of the terms"
+    );
+    let _ = std::fs::remove_dir_all(&folder);
 }

@@ -21,6 +21,10 @@ pub struct LessonState {
     pub presenting: bool,
     /// Text of the lesson file field.
     pub file_field: String,
+    /// The height of the bands the texts cover at the top and the bottom
+    /// of the image (points), as drawn last frame: the split's labels go
+    /// between them.
+    pub bands: (f32, f32),
 }
 
 /// The key that enters and leaves presentation mode.
@@ -111,8 +115,9 @@ pub fn open(app: &mut LumiereApp, lesson: Lesson, step: usize) {
     show_step(app, step);
 }
 
-/// Shows step `index` of the open lesson: its scene, settings, display and
-/// sample count replace the current ones (the film restarts).
+/// Shows step `index` of the open lesson: its scene, settings, display,
+/// sample count and split (A | B, or none) replace the current ones (the
+/// film restarts).
 pub fn show_step(app: &mut LumiereApp, index: usize) {
     let Some(lesson) = app.lesson.lesson.clone() else {
         return;
@@ -153,6 +158,11 @@ pub fn show_step(app: &mut LumiereApp, index: usize) {
     if let Some((x, y)) = view.probe {
         app.probe.pick(x, y);
     }
+    // the step's split, A | B, or none
+    app.compare.enabled = view.split.is_some();
+    if let Some(b) = view.split {
+        app.compare.b = b;
+    }
     app.message = Some(format!(
         "{} — step {} of {}",
         lesson.title.get(app.lesson.lang),
@@ -186,8 +196,9 @@ pub fn shortcuts(app: &mut LumiereApp, ctx: &egui::Context) {
 
 /// Draws the step's title and formula at the top of `image` and its caption
 /// at the bottom, each on a dark band, in sizes relative to the image.
-pub fn overlay(app: &LumiereApp, ctx: &egui::Context, image: egui::Rect) {
+pub fn overlay(app: &mut LumiereApp, ctx: &egui::Context, image: egui::Rect) {
     let Some(lesson) = &app.lesson.lesson else {
+        app.lesson.bands = (0.0, 0.0);
         return;
     };
     let step = &lesson.steps[app.lesson.step];
@@ -238,4 +249,5 @@ pub fn overlay(app: &LumiereApp, ctx: &egui::Context, image: egui::Rect) {
         caption,
         egui::Color32::WHITE,
     );
+    app.lesson.bands = (top.height(), bottom.height());
 }

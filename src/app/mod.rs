@@ -9,15 +9,18 @@ mod bench;
 mod convergence;
 pub mod display;
 mod export;
+pub mod four_up_view;
 mod interact;
 pub mod lesson_view;
 pub mod noise_view;
+mod override_ui;
 mod panels;
 pub mod probe_view;
 pub mod reference;
 mod source_quality;
 pub mod split;
 pub mod thumbnails;
+mod viewport;
 
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
@@ -25,7 +28,6 @@ use std::sync::{Arc, Mutex};
 use eframe::egui;
 use serde::{Deserialize, Serialize};
 
-use crate::analysis::convergence::EstimatorKey;
 use crate::analysis::metrics::ReferenceImage;
 use crate::analysis::noise::{DisplayMode, NoiseView};
 use crate::render::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
@@ -48,8 +50,8 @@ pub struct ViewOptions {
     pub bench: bool,
     /// An EXR of the starting view to measure the error against.
     pub reference: Option<PathBuf>,
-    /// Compare with this second estimator from the start.
-    pub compare: Option<EstimatorKey>,
+    /// Compare from the start with B: A's settings with these changes.
+    pub compare: Option<crate::render::settings_override::SettingsOverride>,
     /// Open the convergence plot.
     pub convergence_plot: bool,
     /// What the image shows first (radiance or a noise view).
@@ -165,8 +167,10 @@ pub struct LumiereApp {
     pub reference: Option<Arc<ReferenceImage>>,
     /// What the reference is valid for, its capture, the errors and curves.
     pub errors: reference::ErrorTracking,
-    /// The equal-time comparison with a second estimator.
+    /// The A/B comparison with a second image.
     pub compare: split::Compare,
+    /// The four-up layout's image and tiles.
+    pub four_up: four_up_view::FourUpState,
     /// Number of the worker now rendering A (each spawn takes the next).
     renderer_serial: u64,
     spawned: u64,
@@ -231,6 +235,8 @@ impl LumiereApp {
             camera: camera.clone(),
             paused: false,
             stop_at_spp: options.exit_after_spp.or(state.stop_at_spp),
+            // the first frame asks for them if the four-up is shown
+            term_images: false,
         };
         let renderer = ProgressiveRenderer::spawn(request.clone(), move || ctx.request_repaint());
         let mut probe = probe_view::ProbeState::default();
@@ -264,6 +270,7 @@ impl LumiereApp {
             reference: None,
             errors: reference::ErrorTracking::default(),
             compare: split::Compare::default(),
+            four_up: four_up_view::FourUpState::default(),
             renderer_serial: 1,
             spawned: 1,
             noise_view: noise_view::NoiseViewState::default(),
@@ -281,10 +288,10 @@ impl LumiereApp {
             lesson_view::open(&mut app, lesson, options.step);
         }
         app.errors.show_plot = options.convergence_plot;
-        if let Some(estimator) = options.compare {
+        if let Some(b) = options.compare {
             // B and the one-thread A start with the first frame (split::sync)
             app.compare.enabled = true;
-            app.compare.estimator = estimator;
+            app.compare.b = b;
         }
         if let Some(path) = &options.reference {
             reference::load_reference_exr(&mut app, &path.to_string_lossy())?;
@@ -320,6 +327,7 @@ impl LumiereApp {
             // a reference capture gets the cores to itself
             paused: self.paused || self.errors.capturing(),
             stop_at_spp: self.exit_after_spp.or(self.state.stop_at_spp),
+            term_images: four_up_view::active(self),
         }
     }
 
@@ -520,6 +528,11 @@ impl LumiereApp {
         let job = export::ScreenshotJob {
             folder: PathBuf::from(&self.state.export_dir),
             snapshot,
+            shown: match self.compare.composite() {
+                Some(composite) => export::Shown::Split(Arc::clone(&composite.image)),
+                None if four_up_view::active(self) => export::Shown::FourUp,
+                None => export::Shown::Image,
+            },
             film: self.renderer.film(),
             per_term_exr: self.state.per_term_exr,
             sidecar: crate::render::sidecar::Sidecar {
@@ -529,6 +542,7 @@ impl LumiereApp {
                 display: self.state.display,
                 samples_per_pixel: 0,
                 edits: self.scene_edits(),
+                split: self.compare.enabled.then(|| self.compare.b.clone()),
             },
         };
         self.exports.push(std::thread::spawn(move || job.run()));
@@ -597,7 +611,7 @@ impl eframe::App for LumiereApp {
         }
         self.update_views(&ctx, &snapshot);
         let shown = split::shown_snapshot(self, &snapshot);
-        let image_rect = panels::viewport(self, ui, &shown);
+        let image_rect = viewport::viewport(self, ui, &shown);
         self.image_rect = Some(image_rect);
         lesson_view::overlay(self, &ctx, image_rect);
         convergence::plot_window(self, &ctx);
@@ -658,6 +672,7 @@ fn same_request(a: &ViewRequest, b: &ViewRequest) -> bool {
         && a.camera == b.camera
         && a.paused == b.paused
         && a.stop_at_spp == b.stop_at_spp
+        && a.term_images == b.term_images
 }
 
 /// Opens the viewer window and runs until it is closed.

@@ -1,13 +1,12 @@
-//! The viewer's widgets: side panel groups, status bar, viewport, shortcuts.
+//! The viewer's widgets: side panel groups, status bar, shortcuts.
 //! Each function edits the app's plain state; `LumiereApp::sync_renderer`
 //! then tells the worker what changed.
 
 use eframe::egui;
 use strum::IntoEnumIterator;
 
-use super::noise_view::{self, LEGEND_HEIGHT};
-use super::probe_view::{self, ImageMapping};
-use super::{LumiereApp, display, interact, reference, split};
+use super::noise_view;
+use super::{LumiereApp, interact, reference, split};
 use crate::analysis::noise::{DisplayMode, NoiseSource, Scale};
 use crate::render::progressive::Snapshot;
 use crate::render::settings::Choice;
@@ -38,8 +37,9 @@ fn term_tooltip(term: Term) -> &'static str {
     }
 }
 
-/// Keyboard: 0–3 toggle L0–L3+, L cycles the light mode, B the BRDF,
-/// V the display mode, P the probe tool, Space pauses, Ctrl+S saves a screenshot.
+/// Keyboard: 0–3 toggle L0–L3+, 4 the four-up layout, L cycles the light
+/// mode, B the BRDF, V the display mode, P the probe tool, Space pauses,
+/// Ctrl+S saves a screenshot.
 pub fn shortcuts(app: &mut LumiereApp, ctx: &egui::Context) {
     if ctx.egui_wants_keyboard_input() {
         return;
@@ -72,6 +72,9 @@ pub fn shortcuts(app: &mut LumiereApp, ctx: &egui::Context) {
     }
     if pressed(egui::Key::P) {
         app.probe_tool = !app.probe_tool;
+    }
+    if pressed(egui::Key::Num4) {
+        super::four_up_view::toggle(app);
     }
     if ctx.input_mut(|i| i.consume_key(egui::Modifiers::COMMAND, egui::Key::S)) {
         app.save_screenshot();
@@ -524,6 +527,7 @@ fn display_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                     }
                 });
             noise_ui(app, ui);
+            super::four_up_view::layout_ui(app, ui);
         });
 }
 
@@ -692,79 +696,6 @@ fn scene_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                     .small(),
             );
         });
-}
-
-/// The image, fitted to the free space, keeping the render's aspect; returns where.
-pub fn viewport(
-    app: &mut LumiereApp,
-    ui: &mut egui::Ui,
-    snapshot: &std::sync::Arc<Snapshot>,
-) -> egui::Rect {
-    egui::CentralPanel::default()
-        .frame(egui::Frame::new().fill(egui::Color32::from_gray(24)))
-        .show(ui, |ui| {
-            let mut available = ui.available_rect_before_wrap();
-            let noise = app.noise_view.image(app.state.noise);
-            let legend = noise.as_ref().map(|_| {
-                let (rest, strip) =
-                    available.split_top_bottom_at_y(available.bottom() - LEGEND_HEIGHT);
-                available = rest;
-                strip
-            });
-            let settings = &app.state.settings;
-            let ppp = ui.ctx().pixels_per_point();
-            let film = egui::vec2(settings.width as f32, settings.height as f32);
-            let (size, centre) = match app.zoom {
-                // nearest neighbour: each film pixel is a square of `zoom` screen pixels
-                Some(zoom) => (film * zoom as f32 / ppp, available.center() + app.pan),
-                None => {
-                    let aspect = film.x / film.y;
-                    let size = if available.width() / available.height() > aspect {
-                        egui::vec2(available.height() * aspect, available.height())
-                    } else {
-                        egui::vec2(available.width(), available.width() / aspect)
-                    };
-                    (size, available.center())
-                }
-            };
-            // whole physical pixels, so each film pixel maps to a fixed block of them
-            let centred = egui::Rect::from_center_size(centre, size);
-            let rect = egui::Rect::from_min_max(
-                ((centred.min.to_vec2() * ppp).round() / ppp).to_pos2(),
-                ((centred.max.to_vec2() * ppp).round() / ppp).to_pos2(),
-            );
-            let mapping = ImageMapping {
-                rect,
-                width: settings.width,
-                height: settings.height,
-            };
-            let response = ui.allocate_rect(available, egui::Sense::click_and_drag());
-            interact::viewport_input(app, &response, &mapping);
-            let source = match &noise {
-                Some((serial, image)) => Some(display::ImageSource::FalseColour {
-                    serial: *serial,
-                    image: std::sync::Arc::clone(image),
-                }),
-                None => (!snapshot.radiance.is_empty())
-                    .then(|| display::ImageSource::Radiance(std::sync::Arc::clone(snapshot))),
-            };
-            if let Some(source) = source {
-                display::paint_image(ui, rect, source, app.state.display);
-            }
-            probe_view::paint_overlay(&ui.painter_at(available), &mapping, &app.probe);
-            if let (Some(strip), Some((_, image))) = (legend, &noise) {
-                noise_view::legend_ui(
-                    ui,
-                    strip,
-                    image,
-                    app.sent.settings.terms,
-                    app.reference.as_deref(),
-                );
-            }
-            split::overlay_ui(app, ui, rect);
-            rect
-        })
-        .inner
 }
 
 /// One scene of the library: its thumbnail, its name and its description;

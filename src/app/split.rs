@@ -1,37 +1,39 @@
-//! Equal-time comparison of two estimators: A (the viewer's settings) and B
-//! (another light sampling, indirect sampling, sampler or sample counts)
-//! render the same scene, camera and terms at once, each on its own pool of
-//! half the cores, so that after t seconds both have had the same CPU time
-//! and the better estimator shows less noise. B uses the next seed, so the
-//! two noises are independent.
+//! A/B comparison: A (the viewer's settings) and B (A's settings with the
+//! changes of a [`SettingsOverride`]: another light mode, material, set of
+//! terms, integrator, light sampling, indirect sampling, sampler or sample
+//! counts) render the same scene from the same camera at once, each on its
+//! own pool of half the cores, so that after t seconds both have had the
+//! same CPU time: of two estimators of one image, the better one shows less
+//! noise. B uses the next seed, so the two noises are independent.
 //!
-//! The image shows A left and B right of a draggable divider: the two
-//! snapshots are composed into one before the display uploads it.
+//! The image shows A left and B right of a draggable divider, each half
+//! labelled with what differs between them ("point lights" | "extended
+//! lights"): the two snapshots are composed into one before the display
+//! uploads it.
 
 use std::sync::Arc;
 
 use eframe::egui;
 
 use super::LumiereApp;
-use crate::analysis::convergence::EstimatorKey;
 use crate::render::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
-use crate::render::settings::Choice;
-use crate::render::settings::{LightSampling, MAX_SAMPLES_PER_VERTEX};
+use crate::render::settings::{LightSampling, RenderSettings, TermSet};
+use crate::render::settings_override::{SettingsOverride, side_labels};
 
 /// Composed images count their generations from here, away from the workers'.
 const COMPOSITE_GENERATION: u64 = 1 << 62;
 
-/// The second estimator and its renderer.
+/// The second image, B, and its renderer.
 pub struct Compare {
     pub enabled: bool,
-    /// B's estimator.
-    pub estimator: EstimatorKey,
+    /// What B changes from A's settings.
+    pub b: SettingsOverride,
     renderer: Option<ProgressiveRenderer>,
     /// Worker number of B's renderer (see `LumiereApp::renderer_serial`).
     pub serial: u64,
     sent: Option<ViewRequest>,
-    /// A's and B's estimators when both were started.
-    started_with: Option<(EstimatorKey, EstimatorKey)>,
+    /// A's and B's settings, terms aside, when both were started.
+    started_with: Option<(RenderSettings, RenderSettings)>,
     /// Where A ends, as a fraction of the image width.
     pub divider: f32,
     composite: Option<Composite>,
@@ -42,10 +44,7 @@ impl Default for Compare {
     fn default() -> Self {
         Self {
             enabled: false,
-            estimator: EstimatorKey {
-                light_sampling: LightSampling::Area,
-                ..EstimatorKey::of(&Default::default())
-            },
+            b: default_b(),
             renderer: None,
             serial: 0,
             sent: None,
@@ -54,6 +53,15 @@ impl Default for Compare {
             composite: None,
             composed: 0,
         }
+    }
+}
+
+/// What B changes when Compare is ticked with nothing chosen: the light
+/// sampling, area instead of MIS.
+pub fn default_b() -> SettingsOverride {
+    SettingsOverride {
+        light_sampling: Some(LightSampling::Area),
+        ..SettingsOverride::default()
     }
 }
 
@@ -85,13 +93,33 @@ fn threads_each() -> usize {
     std::thread::available_parallelism().map_or(1, |n| (n.get() / 2).max(1))
 }
 
-/// B's request: A's, with B's estimator, the next seed, no stop of its own
-/// but a pause once it has had as much time as a stopped A.
+/// B's settings: A's with B's changes, and the next seed.
+pub fn b_settings(app: &LumiereApp) -> RenderSettings {
+    let mut settings = app.compare.b.apply(&app.state.settings);
+    settings.seed = settings.seed.wrapping_add(1);
+    settings
+}
+
+/// A's and B's settings but their terms: a change of either starts both
+/// again together (a term switched on or off restarts neither).
+fn started_key(app: &LumiereApp) -> (RenderSettings, RenderSettings) {
+    let without_terms = |settings: RenderSettings| RenderSettings {
+        terms: TermSet::NONE,
+        ..settings
+    };
+    (
+        without_terms(app.state.settings.clone()),
+        without_terms(b_settings(app)),
+    )
+}
+
+/// B's request: A's, with B's settings, no stop of its own but a pause once
+/// it has had as much time as a stopped A.
 fn request_b(app: &LumiereApp) -> ViewRequest {
     let mut request = app.view_request();
-    app.compare.estimator.apply_to(&mut request.settings);
-    request.settings.seed = request.settings.seed.wrapping_add(1);
+    request.settings = b_settings(app);
     request.stop_at_spp = None;
+    request.term_images = false;
     if let Some(b) = app.compare.snapshot() {
         let a = app.snapshot();
         let caught_up = a.idle && !a.preview && b.elapsed >= a.elapsed;
@@ -117,8 +145,7 @@ pub fn restart(app: &mut LumiereApp, ctx: &egui::Context) {
         ));
         app.compare.serial = app.next_renderer_serial();
         app.compare.sent = Some(request);
-        app.compare.started_with =
-            Some((EstimatorKey::of(&app.state.settings), app.compare.estimator));
+        app.compare.started_with = Some(started_key(app));
     }
 }
 
@@ -134,9 +161,8 @@ pub fn sync(app: &mut LumiereApp, ctx: &egui::Context) {
         }
         return;
     }
-    let estimators = (EstimatorKey::of(&app.state.settings), compare.estimator);
-    if compare.renderer.is_none() || compare.started_with != Some(estimators) {
-        // a new pair of estimators: both start together, so their times stay equal
+    if compare.renderer.is_none() || compare.started_with.as_ref() != Some(&started_key(app)) {
+        // a new pair of settings: both start together, so their times stay equal
         restart(app, ctx);
         return;
     }
@@ -208,6 +234,7 @@ pub fn shown_snapshot(app: &mut LumiereApp, a: &Arc<Snapshot>) -> Arc<Snapshot> 
         preview: a.preview || b.preview,
         radiance: compose(a, &b, width, height, divider_column),
         terms: a.terms,
+        term_images: Default::default(),
         term_samples: a.term_samples,
         elapsed: a.elapsed,
         rays: a.rays,
@@ -250,37 +277,35 @@ pub fn overlay_ui(app: &mut LumiereApp, ui: &mut egui::Ui, rect: egui::Rect) {
         rect.y_range(),
         egui::Stroke::new(2.0, egui::Color32::from_white_alpha(200)),
     );
-    let a_key = composite
-        .a
-        .source
-        .as_ref()
-        .map(|s| EstimatorKey::of(&s.settings));
-    let b_key = composite
-        .b
-        .source
-        .as_ref()
-        .map(|s| EstimatorKey::of(&s.settings));
-    let text = |side: &str, key: Option<EstimatorKey>, snapshot: &Snapshot| {
+    let settings = |snapshot: &Snapshot| snapshot.source.as_ref().map(|s| s.settings.clone());
+    let (a_label, b_label) = match (settings(&composite.a), settings(&composite.b)) {
+        (Some(a), Some(b)) => side_labels(&a, &b),
+        _ => Default::default(),
+    };
+    let text = |side: &str, label: &str, snapshot: &Snapshot| {
         format!(
-            "{side} · {} · {} spp · {:.1} s",
-            key.map_or_else(String::new, |k| k.label()),
+            "{side}: {label} · {} spp · {:.1} s",
             snapshot.samples_per_pixel(),
             snapshot.elapsed.as_secs_f64()
         )
     };
-    let inset = rect.shrink(6.0);
+    // below the lesson's title band, if any
+    let mut inset = rect.shrink(6.0);
+    inset.min.y += app.lesson.bands.0;
     let halves = [
         (
             egui::Rect::from_min_max(inset.min, egui::pos2(x - 6.0, inset.max.y)),
             egui::Layout::left_to_right(egui::Align::Min),
-            text("A", a_key, &composite.a),
+            text("A", &a_label, &composite.a),
         ),
         (
             egui::Rect::from_min_max(egui::pos2(x + 6.0, inset.min.y), inset.max),
             egui::Layout::right_to_left(egui::Align::Min),
-            text("B", b_key, &composite.b),
+            text("B", &b_label, &composite.b),
         ),
     ];
+    // readable from the back of a room: in proportion to the image
+    let size = (rect.height() / 36.0).clamp(12.0, 22.0);
     for (area, layout, text) in halves {
         if area.width() < 20.0 {
             continue;
@@ -292,15 +317,19 @@ pub fn overlay_ui(app: &mut LumiereApp, ui: &mut egui::Ui, rect: egui::Rect) {
                 .corner_radius(3.0)
                 .show(ui, |ui| {
                     ui.add(
-                        egui::Label::new(egui::RichText::new(text).color(egui::Color32::WHITE))
-                            .truncate(),
+                        egui::Label::new(
+                            egui::RichText::new(text)
+                                .size(size)
+                                .color(egui::Color32::WHITE),
+                        )
+                        .truncate(),
                     );
                 });
         });
     }
 }
 
-/// The "Compare" group of the side panel: the toggle and B's estimator.
+/// The "Comparison" group of the side panel: the toggle and what B changes.
 pub fn compare_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
     egui::CollapsingHeader::new("Comparison")
         .default_open(app.compare.enabled)
@@ -308,33 +337,16 @@ pub fn compare_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             let was = app.compare.enabled;
             ui.checkbox(&mut app.compare.enabled, "Compare")
                 .on_hover_text(
-                    "Render a second estimator B beside the image, for the same time: A left, B right of the divider",
+                    "Render B, the image with some settings changed, beside A for the same time: A left, B right of the divider",
                 );
-            if app.compare.enabled && !was {
-                // B starts from A's choices except its light sampling
-                let a = EstimatorKey::of(&app.state.settings);
-                let light_sampling = app.compare.estimator.light_sampling;
-                app.compare.estimator = EstimatorKey { light_sampling, ..a };
+            if app.compare.enabled && !was && app.compare.b.is_empty() {
+                app.compare.b = default_b();
             }
             if !app.compare.enabled {
                 return;
             }
-            let b = &mut app.compare.estimator;
-            combo(ui, "B light sampling", &mut b.light_sampling);
-            combo(ui, "B indirect sampling", &mut b.indirect_sampling);
-            combo(ui, "B sampler", &mut b.sampler);
-            ui.horizontal(|ui| {
-                ui.add(
-                    egui::DragValue::new(&mut b.light_samples)
-                        .range(1..=MAX_SAMPLES_PER_VERTEX)
-                        .prefix("light ×"),
-                );
-                ui.add(
-                    egui::DragValue::new(&mut b.indirect_samples)
-                        .range(1..=MAX_SAMPLES_PER_VERTEX)
-                        .prefix("indirect ×"),
-                );
-            });
+            let a = app.state.settings.clone();
+            super::override_ui::override_ui(ui, &mut app.compare.b, &a);
             ui.label(
                 egui::RichText::new(format!(
                     "A and B: {} thread(s) each; B uses the next seed",
@@ -343,15 +355,5 @@ pub fn compare_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 .weak()
                 .small(),
             );
-        });
-}
-
-fn combo<T: Choice + PartialEq>(ui: &mut egui::Ui, label: &str, value: &mut T) {
-    egui::ComboBox::from_label(label)
-        .selected_text(value.label())
-        .show_ui(ui, |ui| {
-            for choice in T::iter() {
-                ui.selectable_value(value, choice, choice.label());
-            }
         });
 }

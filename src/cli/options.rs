@@ -122,6 +122,7 @@ impl SceneOptions {
         DisplaySettings {
             exposure: self.exposure,
             tonemap: self.tonemap,
+            ..DisplaySettings::default()
         }
     }
 }

@@ -7,7 +7,9 @@ use clap::Parser;
 use lumiere::analysis::noise::DisplayMode;
 use lumiere::analysis::path_view::PathSample;
 use lumiere::lesson::Lang;
-use lumiere::render::settings::{IndirectSampling, LightSampling, Sampler};
+use lumiere::render::settings::{
+    BrdfOverride, IndirectSampling, Integrator, Layout, LightMode, LightSampling, Sampler, TermSet,
+};
 
 use super::Failure;
 use super::options::SceneOptions;
@@ -34,18 +36,33 @@ pub struct ViewArgs {
     /// Open the convergence plot (error against spp and seconds).
     #[arg(long)]
     convergence_plot: bool,
-    /// Compare, for equal time, with a second estimator using this light sampling.
+    /// Compare with B, A's settings with this light sampling: A left, B right, for the same time.
     #[arg(long)]
     compare_light_sampling: Option<LightSampling>,
-    /// The second estimator's indirect sampling (default: the first's).
+    /// Compare with B, A's settings with this indirect sampling.
     #[arg(long)]
     compare_indirect_sampling: Option<IndirectSampling>,
-    /// The second estimator's sampler (default: the first's).
+    /// Compare with B, A's settings with this sampler.
     #[arg(long)]
     compare_sampler: Option<Sampler>,
+    /// Compare with B, A's settings with these lights: authored, point or area.
+    #[arg(long)]
+    compare_lights: Option<LightMode>,
+    /// Compare with B, A's settings with this BRDF: authored, lambert, phong or mirror.
+    #[arg(long)]
+    compare_brdf: Option<BrdfOverride>,
+    /// Compare with B, A's settings with these terms, e.g. L0,L1.
+    #[arg(long)]
+    compare_terms: Option<TermSet>,
+    /// Compare with B, A's settings with this integrator: fast or lecture.
+    #[arg(long)]
+    compare_integrator: Option<Integrator>,
     /// What the image shows: image, standard-error, relative-error or sample-count.
     #[arg(long, default_value = "image")]
     display_mode: DisplayMode,
+    /// The image's layout: single, or four-up (L0 | L1 | L2 | their sum, from one render).
+    #[arg(long, default_value = "single")]
+    layout: Layout,
     /// Probe the pixel at X,Y (from the top left) from the start.
     #[arg(long, value_parser = parse_pixel)]
     probe: Option<(u32, u32)>,
@@ -102,24 +119,31 @@ pub fn run(args: ViewArgs, restore: bool) -> Result<(), Failure> {
         }
         None => None,
     };
-    let comparing = args.compare_light_sampling.is_some()
-        || args.compare_indirect_sampling.is_some()
-        || args.compare_sampler.is_some();
-    let compare = comparing.then(|| {
-        let mut estimator = lumiere::analysis::convergence::EstimatorKey::of(&settings);
-        estimator.light_sampling = args
-            .compare_light_sampling
-            .unwrap_or(estimator.light_sampling);
-        estimator.indirect_sampling = args
-            .compare_indirect_sampling
-            .unwrap_or(estimator.indirect_sampling);
-        estimator.sampler = args.compare_sampler.unwrap_or(estimator.sampler);
-        estimator
-    });
+    let b = lumiere::render::settings_override::SettingsOverride {
+        light_sampling: args.compare_light_sampling,
+        indirect_sampling: args.compare_indirect_sampling,
+        sampler: args.compare_sampler,
+        light_mode: args.compare_lights,
+        brdf: args.compare_brdf,
+        terms: args.compare_terms,
+        integrator: args.compare_integrator,
+        ..Default::default()
+    };
+    check(&b.apply(&settings))?;
+    let compare = (!b.is_empty()).then_some(b);
+    if compare.is_some() && args.layout == Layout::FourUp {
+        return Err(Failure::usage_message(
+            "--layout four-up shows the terms of one render; it cannot be combined with --compare-…",
+        ));
+    }
+    let display = lumiere::render::settings::DisplaySettings {
+        layout: args.layout,
+        ..args.options.display()
+    };
     let options = lumiere::app::ViewOptions {
         scene: args.scene,
         settings,
-        display: args.options.display(),
+        display,
         exit_after_spp: args.exit_after_spp,
         screenshot: args.screenshot,
         restore,

@@ -156,6 +156,12 @@ impl Lesson {
         self.defaults.apply(&mut view);
         self.steps[index].settings.apply(&mut view);
         view.settings.validate()?;
+        if let Some(b) = view.split_settings() {
+            b.validate().map_err(|e| format!("split: {e}"))?;
+            if view.display.layout != crate::render::settings::Layout::Single {
+                return Err("a step shows either a split or the four-up layout, not both".into());
+            }
+        }
         if let Some((x, y)) = view.probe {
             let (frame_width, frame_height) = PROBE_FRAME;
             if x >= frame_width || y >= frame_height {

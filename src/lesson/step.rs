@@ -1,15 +1,14 @@
 //! What a lesson step sets, with the names and values of lumiere's command
 //! line, and the view it gives.
 
-use std::str::FromStr;
-
-use serde::{Deserialize, Deserializer};
+use serde::Deserialize;
 
 use crate::analysis::noise::DisplayMode;
 use crate::render::settings::{
-    BrdfOverride, DisplaySettings, IndirectSampling, Integrator, LightMode, LightSampling,
+    BrdfOverride, DisplaySettings, IndirectSampling, Integrator, Layout, LightMode, LightSampling,
     MisHeuristic, RenderSettings, Sampler, SourceQuality, TermSet, Tonemap,
 };
+use crate::render::settings_override::{SettingsOverride, named};
 
 /// Samples per pixel a step stops at, unless it says otherwise.
 pub const DEFAULT_STEP_SPP: u32 = 64;
@@ -21,39 +20,45 @@ pub const DEFAULT_STEP_SPP: u32 = 64;
 pub struct StepSettings {
     /// `cornell` or a glTF path.
     pub scene: Option<String>,
-    #[serde(default, deserialize_with = "parsed")]
+    #[serde(default, with = "named")]
     pub terms: Option<TermSet>,
-    #[serde(default, deserialize_with = "parsed")]
+    #[serde(default, with = "named")]
     pub lights: Option<LightMode>,
     pub light_radius: Option<f32>,
-    #[serde(default, deserialize_with = "parsed")]
+    #[serde(default, with = "named")]
     pub brdf: Option<BrdfOverride>,
     pub phong_exponent: Option<f32>,
     pub phong_specular: Option<f32>,
-    #[serde(default, deserialize_with = "parsed")]
+    #[serde(default, with = "named")]
     pub light_sampling: Option<LightSampling>,
-    #[serde(default, deserialize_with = "parsed")]
+    #[serde(default, with = "named")]
     pub mis_heuristic: Option<MisHeuristic>,
-    #[serde(default, deserialize_with = "parsed")]
+    #[serde(default, with = "named")]
     pub indirect_sampling: Option<IndirectSampling>,
     pub light_samples: Option<u32>,
     pub indirect_samples: Option<u32>,
-    #[serde(default, deserialize_with = "parsed")]
+    #[serde(default, with = "named")]
     pub sampler: Option<Sampler>,
-    #[serde(default, deserialize_with = "parsed")]
+    #[serde(default, with = "named")]
     pub integrator: Option<Integrator>,
     /// Samples per pixel the step stops at.
     pub spp: Option<u32>,
     /// Exposure in EV (stops).
     pub exposure: Option<f32>,
-    #[serde(default, deserialize_with = "parsed")]
+    #[serde(default, with = "named")]
     pub tonemap: Option<Tonemap>,
-    #[serde(default, deserialize_with = "parsed")]
+    #[serde(default, with = "named")]
     pub display: Option<DisplayMode>,
+    /// `four-up`: L0 | L1 | L2 | their sum.
+    #[serde(default, with = "named")]
+    pub layout: Option<Layout>,
     /// A pixel to probe, [x, y] from the top left: its samples' paths are drawn.
     pub probe: Option<[u32; 2]>,
     /// A quality for each source: `[{ name = "…", samples = 8 }, { name = "…", on = false }]`.
     pub sources: Option<Vec<SourceQuality>>,
+    /// Split the image: A (the settings above) left, B (these changes to
+    /// them) right, for the same time (`[steps.settings.split]`).
+    pub split: Option<SettingsOverride>,
 }
 
 /// Everything a step shows.
@@ -65,6 +70,8 @@ pub struct StepView {
     pub display_mode: DisplayMode,
     pub spp: u32,
     pub probe: Option<(u32, u32)>,
+    /// What B changes, when the image is split between A and B.
+    pub split: Option<SettingsOverride>,
 }
 
 impl StepView {
@@ -81,7 +88,13 @@ impl StepView {
             display_mode: DisplayMode::Image,
             spp: DEFAULT_STEP_SPP,
             probe: None,
+            split: None,
         }
+    }
+
+    /// B's settings, when the image is split.
+    pub fn split_settings(&self) -> Option<RenderSettings> {
+        self.split.as_ref().map(|split| split.apply(&self.settings))
     }
 }
 
@@ -115,20 +128,12 @@ impl StepSettings {
         set(&mut view.display.exposure, &self.exposure);
         set(&mut view.display.tonemap, &self.tonemap);
         set(&mut view.display_mode, &self.display);
+        set(&mut view.display.layout, &self.layout);
         if let Some([x, y]) = self.probe {
             view.probe = Some((x, y));
         }
+        if self.split.is_some() {
+            view.split = self.split.clone();
+        }
     }
-}
-
-/// A value written as on the command line ("L0,L1", "point", "mis"), parsed
-/// by its type; an unknown one is refused with the list of choices.
-fn parsed<'de, D, T>(deserializer: D) -> Result<Option<T>, D::Error>
-where
-    D: Deserializer<'de>,
-    T: FromStr,
-    T::Err: std::fmt::Display,
-{
-    let text = String::deserialize(deserializer)?;
-    text.parse().map(Some).map_err(serde::de::Error::custom)
 }

@@ -12,8 +12,10 @@ pub mod color;
 pub mod context;
 pub mod export;
 pub mod film;
+pub mod four_up;
 pub mod progressive;
 pub mod settings;
+pub mod settings_override;
 pub mod sidecar;
 
 use std::sync::atomic::{AtomicBool, Ordering};

@@ -16,7 +16,8 @@
 //! * a change of the visible terms does **not** restart: each term has its own
 //!   accumulator and sample count; hidden terms are no longer computed but keep
 //!   their samples, and a term switched on accumulates from where it was;
-//! * pause and "stop at N spp" only start or stop the passes.
+//! * pause and "stop at N spp" only start or stop the passes;
+//! * asking for each term's image (the four-up layout) only publishes again.
 //!
 //! The worker knows nothing of the GUI: it calls a `repaint` closure after
 //! each publication. It renders on rayon's global pool (all cores), or on a
@@ -49,6 +50,9 @@ pub struct ViewRequest {
     pub paused: bool,
     /// Stop adding samples once every visible term has this many per pixel.
     pub stop_at_spp: Option<u32>,
+    /// Publish each visible term's image too (`Snapshot::term_images`),
+    /// for the four-up layout.
+    pub term_images: bool,
 }
 
 /// What an image shows: which scene, from where, with which settings.
@@ -76,6 +80,9 @@ pub struct Snapshot {
     pub radiance: Vec<[f32; 4]>,
     /// The visible terms this image sums.
     pub terms: TermSet,
+    /// When the request asks for them: each visible term's image alone
+    /// (linear RGBA, same size), by [`Term::index`]; `radiance` is their sum.
+    pub term_images: [Option<Vec<[f32; 4]>>; Term::COUNT],
     /// Samples per pixel of each term.
     pub term_samples: [u32; Term::COUNT],
     /// Time spent rendering since the restart.
@@ -333,7 +340,7 @@ impl Worker {
             current.request = request;
             self.restarts += 1;
         } else {
-            // visible terms, pause or stop changed: no restart
+            // visible terms, pause, stop or the term images changed: no restart
             current.context.settings.terms = settings.terms;
             current.converged = false;
             current.request = request;
@@ -434,6 +441,16 @@ impl Worker {
             return;
         };
         let terms = current.request.settings.terms;
+        let rgba = |pixels: Vec<glam::Vec3>| -> Vec<[f32; 4]> {
+            pixels
+                .into_iter()
+                .map(|p| p.extend(1.0).to_array())
+                .collect()
+        };
+        let term_images = Term::ALL.map(|t| {
+            (current.request.term_images && terms.contains(t))
+                .then(|| rgba(film.radiance(TermSet::only(t))))
+        });
         self.generation += 1;
         let snapshot = Snapshot {
             generation: self.generation,
@@ -441,12 +458,9 @@ impl Worker {
             width: film.width,
             height: film.height,
             preview,
-            radiance: film
-                .radiance(terms)
-                .into_iter()
-                .map(|p| p.extend(1.0).to_array())
-                .collect(),
+            radiance: rgba(film.radiance(terms)),
             terms,
+            term_images,
             term_samples: Term::ALL.map(|t| if preview { 0 } else { film.samples(t) }),
             elapsed: current.elapsed,
             rays: current.rays,

@@ -488,12 +488,41 @@ impl Tonemap {
     }
 }
 
-/// How radiance becomes a picture: exposure (stops), then the tonemap, then sRGB.
+/// How the viewer lays the image out.
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    IntoStaticStr,
+    EnumString,
+    Display,
+)]
+#[strum(serialize_all = "kebab-case", ascii_case_insensitive, parse_err_ty = String, parse_err_fn = unknown_choice::<Layout>)]
+pub enum Layout {
+    /// The sum of the visible terms.
+    #[default]
+    Single,
+    /// L0 | L1 | L2 | their sum, side by side, from the same render
+    /// (`crate::render::four_up`).
+    FourUp,
+}
+
+/// How radiance becomes a picture: exposure (stops), then the tonemap, then
+/// sRGB; and, in the viewer, the layout.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct DisplaySettings {
     pub exposure: f32,
     pub tonemap: Tonemap,
+    /// The viewer's layout (renders and EXR files show the sum).
+    pub layout: Layout,
 }
 
 /// A closed set of options (light mode, BRDF, strategies, sampler, …):

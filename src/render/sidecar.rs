@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::render::settings::{DisplaySettings, RenderSettings};
+use crate::render::settings_override::SettingsOverride;
 use crate::scene::Camera;
 use crate::scene::edits::SceneEdits;
 
@@ -23,6 +24,11 @@ pub struct Sidecar {
     /// What the viewer changed in the scene (materials, lights' strengths).
     #[serde(default, skip_serializing_if = "SceneEdits::is_empty")]
     pub edits: SceneEdits,
+    /// The viewer's A/B comparison, when the screenshot shows one: what B
+    /// changed from `settings` (the PNG shows A | B; the EXR and
+    /// `render --settings` are A's image).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub split: Option<SettingsOverride>,
 }
 
 /// A sidecar that could not be read or written.

@@ -19,6 +19,16 @@ pub fn harness() -> Harness<'static, LumiereApp> {
 /// window tall enough for the whole side panel (a widget scrolled out of
 /// view has no node to click).
 pub fn harness_with_film(width: u32, height: u32) -> Harness<'static, LumiereApp> {
+    harness_with_window(width, height, [1100.0, 1300.0])
+}
+
+/// The viewer on the Cornell box, rendering a `width`×`height` image, in a
+/// window of `size` points.
+pub fn harness_with_window(
+    width: u32,
+    height: u32,
+    size: [f32; 2],
+) -> Harness<'static, LumiereApp> {
     let options = ViewOptions {
         settings: RenderSettings {
             width,
@@ -28,7 +38,7 @@ pub fn harness_with_film(width: u32, height: u32) -> Harness<'static, LumiereApp
         ..ViewOptions::default()
     };
     let mut harness = Harness::builder()
-        .with_size([1100.0, 1300.0])
+        .with_size(size)
         .wgpu()
         .build_eframe(|cc| LumiereApp::new(cc, options).expect("the Cornell box loads"));
     harness.run_steps(2);

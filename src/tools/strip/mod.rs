@@ -606,6 +606,12 @@ fn text_width(text: &str, size: u32) -> f32 {
     set_text(text, size).1
 }
 
+/// Whether `label` fits a tile `tile_width` pixels wide, with its margins,
+/// at the smallest text size (else it is clipped).
+pub fn label_fits(label: &str, tile_width: u32) -> bool {
+    text_width(label, MIN_TEXT_SIZE).ceil() as u32 + 2 * margin(MIN_TEXT_SIZE) <= tile_width
+}
+
 /// Space around labels of `size` pixels.
 fn margin(size: u32) -> u32 {
     size.div_ceil(3)
