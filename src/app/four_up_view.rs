@@ -141,13 +141,8 @@ pub fn overlay_ui(
             painter.hline(rect.x_range(), rect.min.y, seam);
         }
     }
-    // the lesson's title band covers the top of the image
-    let band = app.lesson.bands.0;
     for view in &mut views {
-        let mut inset = view.rect.shrink(4.0);
-        if view.rect.min.y <= image.min.y + 0.5 {
-            inset.min.y += band;
-        }
+        let inset = view.rect.shrink(4.0);
         if inset.width() < 20.0 || inset.height() < 10.0 {
             continue;
         }

@@ -21,10 +21,6 @@ pub struct LessonState {
     pub presenting: bool,
     /// Text of the lesson file field.
     pub file_field: String,
-    /// The height of the bands the texts cover at the top and the bottom
-    /// of the image (points), as drawn last frame: the split's labels go
-    /// between them.
-    pub bands: (f32, f32),
 }
 
 /// The key that enters and leaves presentation mode.
@@ -194,60 +190,84 @@ pub fn shortcuts(app: &mut LumiereApp, ctx: &egui::Context) {
     }
 }
 
-/// Draws the step's title and formula at the top of `image` and its caption
-/// at the bottom, each on a dark band, in sizes relative to the image.
-pub fn overlay(app: &mut LumiereApp, ctx: &egui::Context, image: egui::Rect) {
-    let Some(lesson) = &app.lesson.lesson else {
-        app.lesson.bands = (0.0, 0.0);
-        return;
-    };
+/// A lesson step's texts, laid out: the title and the formula in a band
+/// above the image, the caption in a band below it.
+pub struct Bands {
+    pub top: egui::Rect,
+    pub bottom: egui::Rect,
+    title: Arc<egui::Galley>,
+    formula: Arc<egui::Galley>,
+    caption: Arc<egui::Galley>,
+    margin: f32,
+}
+
+/// The bands of the open lesson's step across `area`, the space the image
+/// and its texts share: the image goes between them, so the texts never
+/// cover the picture. Sizes follow the area's height, so that the texts
+/// stay readable from the back of a room whatever the window.
+pub fn bands(app: &LumiereApp, ctx: &egui::Context, area: egui::Rect) -> Option<Bands> {
+    let lesson = app.lesson.lesson.as_ref()?;
     let step = &lesson.steps[app.lesson.step];
     let lang = app.lesson.lang;
-    let painter = ctx.layer_painter(egui::LayerId::new(
-        egui::Order::Foreground,
-        egui::Id::unique("lesson overlay"),
-    ));
-    // sizes in proportion to the image, so that a projector's scale keeps them readable
-    let unit = (image.height() / 24.0).clamp(12.0, 48.0);
+    let unit = (area.height() / 28.0).clamp(11.0, 48.0);
     let margin = unit * 0.5;
-    let width = image.width() - 2.0 * margin;
-    let band = egui::Color32::from_black_alpha(170);
-    let text = |string: &str, size: f32| {
-        painter.layout(
-            string.to_owned(),
-            egui::FontId::proportional(size),
-            egui::Color32::WHITE,
-            width,
-        )
+    let width = area.width() - 2.0 * margin;
+    let text = |string: String, size: f32, colour: egui::Color32| {
+        ctx.fonts_mut(|fonts| {
+            fonts.layout(string, egui::FontId::proportional(size), colour, width)
+        })
     };
     let title = text(
-        &format!("{}. {}", app.lesson.step + 1, step.title.get(lang)),
+        format!("{}. {}", app.lesson.step + 1, step.title.get(lang)),
         unit * 1.2,
-    );
-    let formula = text(&step.formula, unit);
-    let top = egui::Rect::from_min_size(
-        image.min,
-        egui::vec2(
-            image.width(),
-            title.size().y + formula.size().y + 3.0 * margin,
-        ),
-    );
-    painter.rect_filled(top, 0.0, band);
-    let title_pos = image.min + egui::vec2(margin, margin);
-    let formula_pos = title_pos + egui::vec2(0.0, title.size().y + margin);
-    painter.galley(title_pos, title, egui::Color32::WHITE);
-    painter.galley(formula_pos, formula, egui::Color32::WHITE);
-
-    let caption = text(step.caption.get(lang), unit * 0.8);
-    let bottom = egui::Rect::from_min_max(
-        egui::pos2(image.min.x, image.max.y - caption.size().y - 2.0 * margin),
-        image.max,
-    );
-    painter.rect_filled(bottom, 0.0, band);
-    painter.galley(
-        bottom.min + egui::vec2(margin, margin),
-        caption,
         egui::Color32::WHITE,
     );
-    app.lesson.bands = (top.height(), bottom.height());
+    let formula = text(step.formula.clone(), unit, FORMULA_COLOUR);
+    let caption = text(
+        step.caption.get(lang).to_owned(),
+        unit * 0.8,
+        egui::Color32::WHITE,
+    );
+    let top_height = title.size().y + formula.size().y + 3.0 * margin;
+    let bottom_height = caption.size().y + 2.0 * margin;
+    let top = egui::Rect::from_min_size(area.min, egui::vec2(area.width(), top_height));
+    let bottom = egui::Rect::from_min_max(
+        egui::pos2(area.min.x, area.max.y - bottom_height),
+        area.max,
+    );
+    Some(Bands {
+        top,
+        bottom,
+        title,
+        formula,
+        caption,
+        margin,
+    })
+}
+
+/// The formula's colour, as on the exported slides.
+const FORMULA_COLOUR: egui::Color32 = egui::Color32::from_rgb(255, 214, 153);
+
+impl Bands {
+    /// The space left for the image between the bands of `area`.
+    pub fn image_area(&self, area: egui::Rect) -> egui::Rect {
+        egui::Rect::from_min_max(
+            egui::pos2(area.min.x, self.top.max.y),
+            egui::pos2(area.max.x, self.bottom.min.y.max(self.top.max.y + 1.0)),
+        )
+    }
+
+    /// Draws the texts in their bands.
+    pub fn paint(&self, painter: &egui::Painter) {
+        let margin = egui::vec2(self.margin, self.margin);
+        let title_pos = self.top.min + margin;
+        let formula_pos = title_pos + egui::vec2(0.0, self.title.size().y + self.margin);
+        painter.galley(title_pos, Arc::clone(&self.title), egui::Color32::WHITE);
+        painter.galley(formula_pos, Arc::clone(&self.formula), FORMULA_COLOUR);
+        painter.galley(
+            self.bottom.min + margin,
+            Arc::clone(&self.caption),
+            egui::Color32::WHITE,
+        );
+    }
 }

@@ -613,7 +613,6 @@ impl eframe::App for LumiereApp {
         let shown = split::shown_snapshot(self, &snapshot);
         let image_rect = viewport::viewport(self, ui, &shown);
         self.image_rect = Some(image_rect);
-        lesson_view::overlay(self, &ctx, image_rect);
         convergence::plot_window(self, &ctx);
         probe_view::probe_window(&ctx, &mut self.probe);
         self.bench_step(&ctx, &snapshot, started);

@@ -289,9 +289,7 @@ pub fn overlay_ui(app: &mut LumiereApp, ui: &mut egui::Ui, rect: egui::Rect) {
             snapshot.elapsed.as_secs_f64()
         )
     };
-    // below the lesson's title band, if any
-    let mut inset = rect.shrink(6.0);
-    inset.min.y += app.lesson.bands.0;
+    let inset = rect.shrink(6.0);
     let halves = [
         (
             egui::Rect::from_min_max(inset.min, egui::pos2(x - 6.0, inset.max.y)),

@@ -9,7 +9,7 @@ use eframe::egui;
 use super::four_up_view;
 use super::noise_view::{self, LEGEND_HEIGHT};
 use super::probe_view::{self, ImageMapping};
-use super::{LumiereApp, display, interact, split};
+use super::{LumiereApp, display, interact, lesson_view, split};
 use crate::render::four_up::{Arrangement, TILES};
 use crate::render::progressive::Snapshot;
 
@@ -26,6 +26,11 @@ pub fn viewport(app: &mut LumiereApp, ui: &mut egui::Ui, snapshot: &Arc<Snapshot
                 available = rest;
                 strip
             });
+            // a lesson's texts above and below the image, never over it
+            let lesson_bands = lesson_view::bands(app, ui.ctx(), available);
+            if let Some(bands) = &lesson_bands {
+                available = bands.image_area(available);
+            }
             let settings = &app.state.settings;
             let (width, height) = (settings.width, settings.height);
             let four_up = four_up_view::active(app).then(|| {
@@ -124,6 +129,9 @@ pub fn viewport(app: &mut LumiereApp, ui: &mut egui::Ui, snapshot: &Arc<Snapshot
                 app.four_up.tiles.clear();
             }
             split::overlay_ui(app, ui, rect);
+            if let Some(bands) = &lesson_bands {
+                bands.paint(ui.painter());
+            }
             rect
         })
         .inner
