@@ -152,8 +152,8 @@ fn the_summary_names_what_a_step_changes_and_the_index_lists_every_slide() {
         .collect();
     let index = index_markdown(&lesson, Lang::En, &layout, "lumiere lesson x", &entries);
     assert!(index.starts_with("# Simulation – notions\n"));
-    assert!(index.contains("\n## 4. L = L₀ + L₁ + L₂\n"));
-    assert!(index.contains("![4. L = L₀ + L₁ + L₂](04-l0-l1-l2.png)"));
+    assert!(index.contains("\n## 5. L = L₀ + L₁ + L₂\n"));
+    assert!(index.contains("![5. L = L₀ + L₁ + L₂](05-l0-l1-l2.png)"));
     assert!(index.contains("`L₀(p, ωₒ) = Lₑ(p, ωₒ)`"));
     assert!(index.contains("[01-l0-emission.gif](01-l0-emission.gif)"));
     assert_eq!(index.matches(".gif)").count(), 1);
