@@ -13,6 +13,7 @@ use ab_glyph::{Font, GlyphId, PxScale, ScaleFont, point};
 use glam::Vec2;
 use image::RgbImage;
 
+use crate::render::color::{linear_to_srgb, srgb_to_linear};
 use crate::tools::font::dejavu_sans;
 
 /// An 8-bit sRGB colour.
@@ -118,6 +119,63 @@ impl Canvas {
         for (y, line) in srgb.chunks_exact(row).enumerate() {
             let start = self.index(rect.x, rect.y + y as u32);
             self.pixels[start..start + row].copy_from_slice(line);
+        }
+    }
+
+    /// Draws `srgb` (`width` × `height` RGB8 pixels, row-major from the top)
+    /// into `rect` (within the canvas), scaled to its size, each axis on its
+    /// own: enlarged, by nearest neighbour (a pixel becomes a block, as the
+    /// viewer draws its image); reduced, each pixel the mean, in linear
+    /// light, of the source pixels it covers. At the same size, a copy.
+    pub fn put_scaled(&mut self, rect: Rect, (width, height): (u32, u32), srgb: &[u8]) {
+        assert_eq!(
+            srgb.len(),
+            width as usize * height as usize * 3,
+            "image size"
+        );
+        if (rect.width, rect.height) == (width, height) {
+            return self.put(rect, srgb);
+        }
+        if rect.width == 0 || rect.height == 0 || width == 0 || height == 0 {
+            return;
+        }
+        let columns = spans(width, rect.width);
+        let rows = spans(height, rect.height);
+        let to_linear: Vec<f32> = (0..=255u8)
+            .map(|c| srgb_to_linear(c as f32 / 255.0))
+            .collect();
+        for (y, &(y0, y1)) in rows.iter().enumerate() {
+            for (x, &(x0, x1)) in columns.iter().enumerate() {
+                let i = self.index(rect.x + x as u32, rect.y + y as u32);
+                if (x1 - x0, y1 - y0) == (1, 1) {
+                    let j = (y0 as usize * width as usize + x0 as usize) * 3;
+                    self.pixels[i..i + 3].copy_from_slice(&srgb[j..j + 3]);
+                    continue;
+                }
+                let mut sum = [0.0f32; 3];
+                for sy in y0..y1 {
+                    for sx in x0..x1 {
+                        let j = (sy as usize * width as usize + sx as usize) * 3;
+                        for c in 0..3 {
+                            sum[c] += to_linear[srgb[j + c] as usize];
+                        }
+                    }
+                }
+                let n = ((x1 - x0) * (y1 - y0)) as f32;
+                for c in 0..3 {
+                    self.pixels[i + c] = (linear_to_srgb(sum[c] / n) * 255.0 + 0.5) as u8;
+                }
+            }
+        }
+    }
+
+    /// Blends `colour` over every pixel of `rect` (clipped to the canvas) by `alpha`.
+    pub fn shade(&mut self, rect: Rect, colour: Rgb8, alpha: f32) {
+        let bounds = self.bounds();
+        for y in rect.y..rect.bottom().min(self.height) {
+            for x in rect.x..rect.right().min(self.width) {
+                self.blend(x as i64, y as i64, colour, alpha, bounds);
+            }
         }
     }
 
@@ -268,6 +326,24 @@ impl Canvas {
         RgbImage::from_raw(self.width, self.height, self.pixels.clone())
             .expect("the buffer matches the size")
     }
+}
+
+/// For each of `to` pixels along an axis, the source pixels `from..to` it
+/// takes of `from`: the one under its centre when enlarging (or keeping the
+/// size), the ones it covers when reducing.
+fn spans(from: u32, to: u32) -> Vec<(u32, u32)> {
+    let (from, to) = (from as u64, to as u64);
+    (0..to)
+        .map(|i| {
+            if to >= from {
+                let s = ((2 * i + 1) * from / (2 * to)) as u32;
+                (s, s + 1)
+            } else {
+                let (a, b) = ((i * from / to) as u32, ((i + 1) * from / to) as u32);
+                (a, b.max(a + 1))
+            }
+        })
+        .collect()
 }
 
 // ───────────────────────── text ─────────────────────────
