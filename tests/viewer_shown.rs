@@ -68,14 +68,17 @@ fn pixel(image: &image::RgbImage, x: u32, y: u32) -> [u8; 3] {
     image.get_pixel(x, y).0
 }
 
-/// The film pixel that picture pixel `i` of `to` shows of `from` when
-/// enlarged: the one under its centre (nearest neighbour).
-fn nearest(i: u32, from: u32, to: u32) -> u32 {
-    ((2 * i as u64 + 1) * from as u64 / (2 * to as u64)) as u32
+/// The film pixels, first and last, that picture pixel `i` of `to` covers
+/// of `from`: its footprint [i·from/to, (i+1)·from/to).
+fn covered(i: u32, from: u32, to: u32) -> (u32, u32) {
+    let (i, from, to) = (i as u64, from as u64, to as u64);
+    ((i * from / to) as u32, (((i + 1) * from - 1) / to) as u32)
 }
 
-/// Asserts that `region` of `picture` is `srgb` (`width`×`height`, RGB8)
-/// enlarged by nearest neighbour, within a code, where `check(x, y)`.
+/// Asserts that `region` of `picture` shows `srgb` (`width`×`height`,
+/// RGB8) enlarged, where `check(x, y)`: a pixel within one film pixel is
+/// its value (within a code), one on the edge between film pixels lies
+/// between theirs.
 fn assert_region_shows(
     picture: &image::RgbImage,
     region: Rect,
@@ -84,27 +87,32 @@ fn assert_region_shows(
     check: impl Fn(u32, u32) -> bool,
     what: &str,
 ) {
-    let mut checked = 0;
+    let mut exact = 0;
     for y in region.y..region.y + region.height {
         for x in region.x..region.x + region.width {
             if !check(x, y) {
                 continue;
             }
-            let fx = nearest(x - region.x, width, region.width);
-            let fy = nearest(y - region.y, height, region.height);
-            let i = (fy * width + fx) as usize * 3;
+            let (x0, x1) = covered(x - region.x, width, region.width);
+            let (y0, y1) = covered(y - region.y, height, region.height);
             let shown = pixel(picture, x, y);
             for c in 0..3 {
+                let film = (y0..=y1)
+                    .flat_map(|fy| (x0..=x1).map(move |fx| (fy * width + fx) as usize * 3 + c))
+                    .map(|i| srgb[i]);
+                let (lo, hi) = film.fold((255u8, 0u8), |(lo, hi), v| (lo.min(v), hi.max(v)));
                 assert!(
-                    shown[c].abs_diff(srgb[i + c]) <= 1,
-                    "{what}: picture ({x}, {y}) is {shown:?}, film ({fx}, {fy}) is {:?}",
-                    &srgb[i..i + 3]
+                    (lo.saturating_sub(1)..=hi.saturating_add(1)).contains(&shown[c]),
+                    "{what}: picture ({x}, {y}) is {shown:?}, film ({x0}..={x1}, {y0}..={y1}) spans {lo}..={hi} in channel {c}"
                 );
             }
-            checked += 1;
+            exact += usize::from((x0, y0) == (x1, y1));
         }
     }
-    assert!(checked > 1000, "{what}: only {checked} pixels checked");
+    assert!(
+        exact > 1000,
+        "{what}: only {exact} pixels within one film pixel"
+    );
 }
 
 /// The film's radiance as the PNG export shows it.

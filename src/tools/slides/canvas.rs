@@ -123,10 +123,13 @@ impl Canvas {
     }
 
     /// Draws `srgb` (`width` × `height` RGB8 pixels, row-major from the top)
-    /// into `rect` (within the canvas), scaled to its size, each axis on its
-    /// own: enlarged, by nearest neighbour (a pixel becomes a block, as the
-    /// viewer draws its image); reduced, each pixel the mean, in linear
-    /// light, of the source pixels it covers. At the same size, a copy.
+    /// into `rect` (within the canvas), scaled to its size: each pixel of
+    /// `rect` is the mean, in linear light, of the source pixels its
+    /// footprint covers, each weighted by the share it covers. Enlarged by a
+    /// whole factor, a source pixel becomes a block of its own value
+    /// (nearest neighbour, as the viewer draws its image); by a fraction,
+    /// the pixels on a block's edge mix the two neighbours; reduced, a box
+    /// filter. A pixel within one source pixel is a copy of it.
     pub fn put_scaled(&mut self, rect: Rect, (width, height): (u32, u32), srgb: &[u8]) {
         assert_eq!(
             srgb.len(),
@@ -139,31 +142,31 @@ impl Canvas {
         if rect.width == 0 || rect.height == 0 || width == 0 || height == 0 {
             return;
         }
-        let columns = spans(width, rect.width);
-        let rows = spans(height, rect.height);
+        let columns = footprints(width, rect.width);
+        let rows = footprints(height, rect.height);
         let to_linear: Vec<f32> = (0..=255u8)
             .map(|c| srgb_to_linear(c as f32 / 255.0))
             .collect();
-        for (y, &(y0, y1)) in rows.iter().enumerate() {
-            for (x, &(x0, x1)) in columns.iter().enumerate() {
+        let source = |x: u32, y: u32| (y as usize * width as usize + x as usize) * 3;
+        for (y, row) in rows.iter().enumerate() {
+            for (x, column) in columns.iter().enumerate() {
                 let i = self.index(rect.x + x as u32, rect.y + y as u32);
-                if (x1 - x0, y1 - y0) == (1, 1) {
-                    let j = (y0 as usize * width as usize + x0 as usize) * 3;
+                if let ([(sx, _)], [(sy, _)]) = (column.as_slice(), row.as_slice()) {
+                    let j = source(*sx, *sy);
                     self.pixels[i..i + 3].copy_from_slice(&srgb[j..j + 3]);
                     continue;
                 }
                 let mut sum = [0.0f32; 3];
-                for sy in y0..y1 {
-                    for sx in x0..x1 {
-                        let j = (sy as usize * width as usize + sx as usize) * 3;
-                        for c in 0..3 {
-                            sum[c] += to_linear[srgb[j + c] as usize];
+                for &(sy, wy) in row {
+                    for &(sx, wx) in column {
+                        let j = source(sx, sy);
+                        for (c, total) in sum.iter_mut().enumerate() {
+                            *total += wx * wy * to_linear[srgb[j + c] as usize];
                         }
                     }
                 }
-                let n = ((x1 - x0) * (y1 - y0)) as f32;
-                for c in 0..3 {
-                    self.pixels[i + c] = (linear_to_srgb(sum[c] / n) * 255.0 + 0.5) as u8;
+                for (c, total) in sum.into_iter().enumerate() {
+                    self.pixels[i + c] = (linear_to_srgb(total) * 255.0 + 0.5) as u8;
                 }
             }
         }
@@ -328,20 +331,21 @@ impl Canvas {
     }
 }
 
-/// For each of `to` pixels along an axis, the source pixels `from..to` it
-/// takes of `from`: the one under its centre when enlarging (or keeping the
-/// size), the ones it covers when reducing.
-fn spans(from: u32, to: u32) -> Vec<(u32, u32)> {
+/// For each of `to` pixels along an axis, the pixels of `from` its
+/// footprint [i·from/to, (i+1)·from/to) covers, each with the share of the
+/// footprint it covers (they add up to 1).
+fn footprints(from: u32, to: u32) -> Vec<Vec<(u32, f32)>> {
     let (from, to) = (from as u64, to as u64);
     (0..to)
         .map(|i| {
-            if to >= from {
-                let s = ((2 * i + 1) * from / (2 * to)) as u32;
-                (s, s + 1)
-            } else {
-                let (a, b) = ((i * from / to) as u32, ((i + 1) * from / to) as u32);
-                (a, b.max(a + 1))
-            }
+            // the footprint in 1/to of a source pixel
+            let (start, end) = (i * from, (i + 1) * from);
+            (start / to..=(end - 1) / to)
+                .map(|s| {
+                    let covered = end.min((s + 1) * to) - start.max(s * to);
+                    (s as u32, covered as f32 / from as f32)
+                })
+                .collect()
         })
         .collect()
 }

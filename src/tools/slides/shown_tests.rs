@@ -61,23 +61,45 @@ fn sizes_outside_16_to_16384_are_refused() {
 }
 
 #[test]
-fn the_image_fills_the_picture_keeping_its_aspect_nearest_neighbour_when_enlarged() {
+fn the_image_fills_the_picture_keeping_its_aspect_in_blocks_when_enlarged() {
     let shown = picture(ShownImage::Image(ramp(64, 48)));
     let (canvas, layout) = compose(&shown, 640, 360);
     assert_eq!((canvas.width(), canvas.height()), (640, 360));
     assert_eq!(layout.image, Rect::new(80, 0, 480, 360), "4:3, centred");
-    for y in 0..360 {
-        for x in 0..640 {
-            let expected = if layout.image.contains(x as i64, y as i64) {
-                // the film pixel under the centre: 7.5 picture pixels a film pixel
-                let fx = ((x - 80) as f32 + 0.5) / 7.5;
-                let fy = (y as f32 + 0.5) / 7.5;
-                [fx as u8, fy as u8, 7]
+    // 7.5 picture pixels a film pixel: a block of 7 or 8 pixels of its value,
+    // the pixel its edge runs through mixes the two
+    let mut blocks = 0;
+    for y in 0..360u32 {
+        for x in 0..640u32 {
+            let shown = canvas.pixel(x, y);
+            if !layout.image.contains(x as i64, y as i64) {
+                assert_eq!(shown, BACKGROUND, "({x}, {y})");
+                continue;
+            }
+            let footprint = |i: u32| (2 * i / 15, (2 * i + 1) / 15);
+            let ((x0, x1), (y0, y1)) = (footprint(x - 80), footprint(y));
+            if (x0, y0) == (x1, y1) {
+                assert_eq!(shown, [x0 as u8, y0 as u8, 7], "({x}, {y})");
+                blocks += 1;
             } else {
-                BACKGROUND
-            };
-            assert_eq!(canvas.pixel(x, y), expected, "({x}, {y})");
+                assert!(
+                    (x0..=x1).contains(&(shown[0] as u32)),
+                    "({x}, {y}): {shown:?}"
+                );
+                assert!(
+                    (y0..=y1).contains(&(shown[1] as u32)),
+                    "({x}, {y}): {shown:?}"
+                );
+                assert_eq!(shown[2], 7);
+            }
         }
+    }
+    assert!(blocks > 480 * 360 * 3 / 4, "{blocks}");
+    // a whole factor: blocks only, nearest neighbour
+    let (canvas, _) = compose(&picture(ShownImage::Image(ramp(160, 120))), 640, 360);
+    for (x, y) in [(80, 0), (82, 2), (83, 3), (559, 359), (300, 200)] {
+        let expected = [((x - 80) / 3) as u8, (y / 3) as u8, 7];
+        assert_eq!(canvas.pixel(x, y), expected, "({x}, {y})");
     }
     // a tall picture: the image as wide as it, centred vertically
     let (_, layout) = compose(&shown, 300, 900);
@@ -85,7 +107,7 @@ fn the_image_fills_the_picture_keeping_its_aspect_nearest_neighbour_when_enlarge
 }
 
 #[test]
-fn a_reduced_image_averages_in_linear_light() {
+fn scaled_pixels_average_what_they_cover_in_linear_light() {
     // black and white columns, halved: each pixel the mean of one of each
     let mut pixels = Vec::new();
     for _ in 0..2 {
@@ -99,6 +121,12 @@ fn a_reduced_image_averages_in_linear_light() {
     assert_eq!(grey, 188);
     assert_eq!(canvas.pixel(0, 0), [grey; 3]);
     assert_eq!(canvas.pixel(1, 0), [grey; 3]);
+    // black | white enlarged to three pixels: the middle one covers half of each
+    let mut canvas = Canvas::new(3, 1, [1, 2, 3]);
+    canvas.put_scaled(Rect::new(0, 0, 3, 1), (2, 1), &[0, 0, 0, 255, 255, 255]);
+    assert_eq!(canvas.pixel(0, 0), [0; 3]);
+    assert_eq!(canvas.pixel(1, 0), [grey; 3]);
+    assert_eq!(canvas.pixel(2, 0), [255; 3]);
 }
 
 /// A standard-error map of `width`×`height` rising from left to right.
