@@ -21,7 +21,7 @@ pub struct ViewArgs {
     /// A .gltf/.glb file, or a built-in scene: `cornell` (the default) or another `lumiere lessons` lists.
     #[arg(default_value = "cornell")]
     scene: String,
-    /// Render to this many samples per pixel, then exit (saving --screenshot first).
+    /// Render to this many samples per pixel, then exit (saving --save-as-shown and --screenshot first).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000_000))]
     exit_after_spp: Option<u32>,
     /// With --exit-after-spp: a PNG of the whole window, taken by the viewer.

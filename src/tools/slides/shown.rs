@@ -26,9 +26,12 @@
 //!   out exactly as on its slide (`lumiere lesson --export`, [`Slide`]),
 //!   and the image is fitted into the slide's image region. Without, there
 //!   are no text bands and the image fills the picture, its aspect kept.
-//! * Scaling: enlarged, by nearest neighbour (each film pixel a block of
-//!   pixels, as the viewer draws it); reduced, each pixel the mean in
-//!   linear light of the film pixels it covers ([`Canvas::put_scaled`]).
+//! * Scaling ([`Canvas::put_scaled`]): each pixel is the mean, in linear
+//!   light, of the film pixels its footprint covers, weighted by how much
+//!   of it each covers. Enlarged by a whole factor, each film pixel becomes
+//!   a block of its value (nearest neighbour, as the viewer draws it); by a
+//!   fraction, the pixels on a block's edge mix its two film pixels;
+//!   reduced, a box filter.
 //! * Text sizes follow the picture's height as on a slide (u = H / 1080):
 //!   the colour bar's are the slide's; a split label is 1/36 of the image's
 //!   height, a tile's label 1/18 of the tile's (at least 9 px), on a
