@@ -181,6 +181,8 @@ fn the_lesson_opens_on_a_step_in_a_real_window() {
         return;
     };
     let shot = scratch("lesson.png");
+    let shown = scratch("lesson-shown.png");
+    let shown_arg = shown.to_str().unwrap();
     let stderr = run_viewer(
         &display,
         &[
@@ -194,6 +196,10 @@ fn the_lesson_opens_on_a_step_in_a_real_window() {
             "120",
             "--exit-after-spp",
             "8",
+            "--save-as-shown",
+            shown_arg,
+            "--shown-size",
+            "640x360",
         ],
         &shot,
     );
@@ -236,6 +242,26 @@ fn the_lesson_opens_on_a_step_in_a_real_window() {
         worst <= 2 && mean < 0.5,
         "the lesson's image differs from the render: worst {worst}/255, mean {mean:.3}"
     );
+    // saved as shown: the step's slide at 640×360, its image region the
+    // render (enlarged by nearest neighbour), the texts around it
+    assert!(stderr.contains("as shown"), "{stderr}");
+    let picture = load_rgb(&shown);
+    assert_eq!(picture.dimensions(), (640, 360));
+    let layout = lumiere::tools::slides::SlideLayout::new(640, 360);
+    let image = layout.image;
+    let rect = [image.x, image.y, image.width, image.height];
+    let (worst, mean) = difference(&picture, rect, &expected, 0..expected.height());
+    assert!(
+        worst <= 1 && mean < 0.1,
+        "the saved picture differs from the render: worst {worst}/255, mean {mean:.3}"
+    );
+    let title = layout.title_rect();
+    let text = (title.y..title.bottom())
+        .flat_map(|y| (title.x..title.right()).map(move |x| (x, y)))
+        .filter(|&(x, y)| picture.get_pixel(x, y).0.iter().all(|&c| c > 170))
+        .count();
+    assert!(text > 100, "the step's title: {text} pixels");
+    assert!(shown.with_extension("json").exists(), "the sidecar");
 }
 
 #[test]

@@ -17,6 +17,7 @@ mod override_ui;
 mod panels;
 pub mod probe_view;
 pub mod reference;
+mod shown;
 mod source_quality;
 pub mod split;
 pub mod thumbnails;
@@ -41,9 +42,13 @@ pub struct ViewOptions {
     pub scene: String,
     pub settings: RenderSettings,
     pub display: DisplaySettings,
-    /// Render to this many samples per pixel, save `screenshot` (if any) and exit.
+    /// Render to this many samples per pixel, save `save_as_shown` and
+    /// `screenshot` (if any) and exit.
     pub exit_after_spp: Option<u32>,
     pub screenshot: Option<PathBuf>,
+    /// A PNG of the picture as shown, at `shown_size` (or the Render group's size).
+    pub save_as_shown: Option<PathBuf>,
+    pub shown_size: Option<(u32, u32)>,
     /// Restore the settings of the previous run (not for scripted runs).
     pub restore: bool,
     /// Measure toggle-to-preview latency and UI frame times, print them and exit.
@@ -76,6 +81,8 @@ impl Default for ViewOptions {
             display: DisplaySettings::default(),
             exit_after_spp: None,
             screenshot: None,
+            save_as_shown: None,
+            shown_size: None,
             restore: false,
             bench: false,
             reference: None,
@@ -110,6 +117,8 @@ pub struct Persisted {
     /// Set the exposure from each new image: its mean luminance shown as
     /// mid-grey (a dim term such as L2 alone becomes visible).
     pub auto_exposure: bool,
+    /// The size of the pictures "Save as shown" writes, in pixels.
+    pub shown_size: (u32, u32),
 }
 
 impl Default for Persisted {
@@ -123,6 +132,7 @@ impl Default for Persisted {
             noise: NoiseView::default(),
             ui_scale: 1.0,
             auto_exposure: false,
+            shown_size: crate::tools::slides::shown::DEFAULT_SIZE,
         }
     }
 }
@@ -145,6 +155,10 @@ pub struct LumiereApp {
     pub message: Option<String>,
     exit_after_spp: Option<u32>,
     screenshot: Option<PathBuf>,
+    /// `--save-as-shown`: the picture to write before exiting.
+    script_shown: shown::ScriptShown,
+    /// What went wrong in a scripted run (the run then fails).
+    script_failure: Arc<Mutex<Option<String>>>,
     /// Set by the screenshot callback: the outcome of saving the window.
     window_shot: Arc<Mutex<Option<Result<PathBuf, String>>>>,
     window_shot_requested: bool,
@@ -219,6 +233,9 @@ impl LumiereApp {
         {
             state = saved;
         }
+        if let Some(size) = options.shown_size {
+            state.shown_size = size;
+        }
         if let Some(render_state) = &cc.wgpu_render_state {
             display::BlitResources::install(render_state);
         }
@@ -256,6 +273,10 @@ impl LumiereApp {
             sent: request,
             exit_after_spp: options.exit_after_spp,
             screenshot: options.screenshot,
+            script_shown: options
+                .save_as_shown
+                .map_or(shown::ScriptShown::Done, shown::ScriptShown::Pending),
+            script_failure: Arc::default(),
             window_shot: Arc::default(),
             window_shot_requested: false,
             image_rect: None,
@@ -442,6 +463,9 @@ impl LumiereApp {
             ctx.request_repaint_after(std::time::Duration::from_millis(20));
             return;
         }
+        if !shown::script_step(self, ctx) {
+            return;
+        }
         let Some(path) = self.screenshot.clone() else {
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
             return;
@@ -478,12 +502,22 @@ impl LumiereApp {
                         );
                     }
                 }
-                Err(e) => eprintln!("error: {e}"),
+                Err(e) => self.script_failed(e),
             }
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
         } else {
             ctx.request_repaint();
         }
+    }
+
+    /// A scripted run's file could not be written: the run fails with `problem`
+    /// (the first, if several).
+    fn script_failed(&mut self, problem: String) {
+        let mut failure = self
+            .script_failure
+            .lock()
+            .unwrap_or_else(|p| p.into_inner());
+        failure.get_or_insert(problem);
     }
 
     /// `--bench`: records this frame and toggles the BRDF when it is time.
@@ -535,18 +569,31 @@ impl LumiereApp {
             },
             film: self.renderer.film(),
             per_term_exr: self.state.per_term_exr,
-            sidecar: crate::render::sidecar::Sidecar {
-                scene: self.scene_spec.clone(),
-                camera: self.camera.clone(),
-                settings: self.state.settings.clone(),
-                display: self.state.display,
-                samples_per_pixel: 0,
-                edits: self.scene_edits(),
-                split: self.compare.enabled.then(|| self.compare.b.clone()),
-            },
+            sidecar: self.sidecar(),
         };
         self.exports.push(std::thread::spawn(move || job.run()));
         self.message = Some("saving…".into());
+    }
+
+    /// Saves the picture as the viewport shows it at the Render group's size
+    /// (`state.shown_size`), laid out as a slide with a lesson's texts, as
+    /// one PNG with the JSON sidecar, on a background thread; the status
+    /// bar says where, or why not (a size out of range).
+    pub fn save_as_shown(&mut self) {
+        shown::save_as_shown(self);
+    }
+
+    /// The JSON sidecar of the image (its sample count set when written).
+    fn sidecar(&self) -> crate::render::sidecar::Sidecar {
+        crate::render::sidecar::Sidecar {
+            scene: self.scene_spec.clone(),
+            camera: self.camera.clone(),
+            settings: self.state.settings.clone(),
+            display: self.state.display,
+            samples_per_pixel: 0,
+            edits: self.scene_edits(),
+            split: self.compare.enabled.then(|| self.compare.b.clone()),
+        }
     }
 
     fn collect_exports(&mut self) {
@@ -691,7 +738,10 @@ pub fn run(options: ViewOptions) -> Result<(), String> {
         "lumiere",
         native_options,
         Box::new(move |cc| match LumiereApp::new(cc, options) {
-            Ok(app) => Ok(Box::new(app)),
+            Ok(mut app) => {
+                app.script_failure = Arc::clone(&failure_in_app);
+                Ok(Box::new(app))
+            }
             Err(e) => {
                 *failure_in_app.lock().unwrap_or_else(|p| p.into_inner()) = Some(e.clone());
                 Err(e.into())

@@ -604,6 +604,7 @@ fn render_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                     app.save_screenshot();
                 }
             });
+            shown_size_ui(app, ui);
             if ui
                 .button("Reset to defaults")
                 .on_hover_text(
@@ -649,6 +650,31 @@ fn render_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                     .labelled_by(label.id);
             });
         });
+}
+
+/// "Save as shown" and the size of its picture.
+fn shown_size_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+    use crate::tools::slides::shown::{MAX_SIDE, MIN_SIDE};
+    ui.horizontal(|ui| {
+        if ui
+            .button("Save as shown")
+            .on_hover_text(
+                "One PNG of the picture as shown — the image, or a noise view with its colour bar, \
+                 A | B, the four-up, the probe's rays, a lesson step's title, formula and caption \
+                 laid out as its slide — at this size, with the settings (JSON)",
+            )
+            .clicked()
+        {
+            app.save_as_shown();
+        }
+        let (width, height) = &mut app.state.shown_size;
+        let sides = MIN_SIDE..=MAX_SIDE;
+        ui.add(egui::DragValue::new(width).range(sides.clone()))
+            .on_hover_text("The picture's width, in pixels");
+        ui.label("×");
+        ui.add(egui::DragValue::new(height).range(sides))
+            .on_hover_text("The picture's height, in pixels");
+    });
 }
 
 fn scene_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {

@@ -253,6 +253,27 @@ pub fn shown_snapshot(app: &mut LumiereApp, a: &Arc<Snapshot>) -> Arc<Snapshot> 
     image
 }
 
+/// Each half's label: the values of the settings that differ, its samples
+/// per pixel and its time ("A: point lights · 64 spp · 1.2 s").
+pub fn labels(composite: &Composite) -> [String; 2] {
+    let settings = |snapshot: &Snapshot| snapshot.source.as_ref().map(|s| s.settings.clone());
+    let (a_label, b_label) = match (settings(&composite.a), settings(&composite.b)) {
+        (Some(a), Some(b)) => side_labels(&a, &b),
+        _ => Default::default(),
+    };
+    let text = |side: &str, label: &str, snapshot: &Snapshot| {
+        format!(
+            "{side}: {label} · {} spp · {:.1} s",
+            snapshot.samples_per_pixel(),
+            snapshot.elapsed.as_secs_f64()
+        )
+    };
+    [
+        text("A", &a_label, &composite.a),
+        text("B", &b_label, &composite.b),
+    ]
+}
+
 /// Over the image: the divider (drag it) and each half's label.
 pub fn overlay_ui(app: &mut LumiereApp, ui: &mut egui::Ui, rect: egui::Rect) {
     let Some(composite) = app.compare.composite().cloned() else {
@@ -277,29 +298,18 @@ pub fn overlay_ui(app: &mut LumiereApp, ui: &mut egui::Ui, rect: egui::Rect) {
         rect.y_range(),
         egui::Stroke::new(2.0, egui::Color32::from_white_alpha(200)),
     );
-    let settings = |snapshot: &Snapshot| snapshot.source.as_ref().map(|s| s.settings.clone());
-    let (a_label, b_label) = match (settings(&composite.a), settings(&composite.b)) {
-        (Some(a), Some(b)) => side_labels(&a, &b),
-        _ => Default::default(),
-    };
-    let text = |side: &str, label: &str, snapshot: &Snapshot| {
-        format!(
-            "{side}: {label} · {} spp · {:.1} s",
-            snapshot.samples_per_pixel(),
-            snapshot.elapsed.as_secs_f64()
-        )
-    };
+    let [a_text, b_text] = labels(&composite);
     let inset = rect.shrink(6.0);
     let halves = [
         (
             egui::Rect::from_min_max(inset.min, egui::pos2(x - 6.0, inset.max.y)),
             egui::Layout::left_to_right(egui::Align::Min),
-            text("A", &a_label, &composite.a),
+            a_text,
         ),
         (
             egui::Rect::from_min_max(egui::pos2(x + 6.0, inset.min.y), inset.max),
             egui::Layout::right_to_left(egui::Align::Min),
-            text("B", &b_label, &composite.b),
+            b_text,
         ),
     ];
     // readable from the back of a room: in proportion to the image

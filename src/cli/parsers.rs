@@ -1,5 +1,5 @@
 //! Value parsers of the options clap cannot check alone: numbers within a
-//! range, `--indirect-samples` and `--probe`.
+//! range, `--indirect-samples`, `--probe`, `--shown-size` and PNG paths.
 
 use std::ops::{Bound, RangeBounds};
 use std::str::FromStr;
@@ -128,6 +128,27 @@ pub fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
         .split_once(',')
         .and_then(|(x, y)| Some((x.trim().parse().ok()?, y.trim().parse().ok()?)));
     parsed.ok_or_else(|| format!("'{s}' is not a pixel X,Y"))
+}
+
+/// `--shown-size`: `WIDTHxHEIGHT` (or `×`), each side within 16..=16384 pixels.
+pub fn parse_shown_size(s: &str) -> Result<(u32, u32), String> {
+    let parsed = s
+        .split_once(['x', 'X', '×'])
+        .and_then(|(w, h)| Some((w.trim().parse().ok()?, h.trim().parse().ok()?)));
+    let (width, height) =
+        parsed.ok_or_else(|| format!("'{s}' is not a size WIDTHxHEIGHT, e.g. 1920x1080"))?;
+    lumiere::tools::slides::shown::check_size(width, height)?;
+    Ok((width, height))
+}
+
+/// A path that ends in `.png`.
+pub fn parse_png_path(s: &str) -> Result<std::path::PathBuf, String> {
+    let path = std::path::PathBuf::from(s);
+    let png = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    png.then_some(path)
+        .ok_or_else(|| format!("'{s}': the picture is a PNG, its name must end in .png"))
 }
 
 /// `--source NAME=N` (N light samples of its own) or `NAME=off`.

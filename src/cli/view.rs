@@ -13,7 +13,7 @@ use lumiere::render::settings::{
 
 use super::Failure;
 use super::options::SceneOptions;
-use super::parsers::parse_pixel;
+use super::parsers::{parse_pixel, parse_png_path, parse_shown_size};
 
 /// The arguments of `lumiere view` (and of `lumiere` without a command).
 #[derive(Parser)]
@@ -21,12 +21,18 @@ pub struct ViewArgs {
     /// A .gltf/.glb file, or a built-in scene: `cornell` (the default) or another `lumiere lessons` lists.
     #[arg(default_value = "cornell")]
     scene: String,
-    /// Render to this many samples per pixel, then exit (saving --screenshot first).
+    /// Render to this many samples per pixel, then exit (saving --save-as-shown and --screenshot first).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000_000))]
     exit_after_spp: Option<u32>,
     /// With --exit-after-spp: a PNG of the whole window, taken by the viewer.
     #[arg(long, requires = "exit_after_spp")]
     screenshot: Option<PathBuf>,
+    /// With --exit-after-spp: a PNG of the picture as shown (as "Save as shown"), and its settings (.json) beside it.
+    #[arg(long, requires = "exit_after_spp", value_parser = parse_png_path)]
+    save_as_shown: Option<PathBuf>,
+    /// The size of --save-as-shown's picture, WIDTHxHEIGHT (each side 16 to 16384 pixels).
+    #[arg(long, default_value = "1920x1080", requires = "save_as_shown", value_parser = parse_shown_size)]
+    shown_size: (u32, u32),
     /// Measure the time from a toggle to the preview on screen and the UI frame time, print them, exit.
     #[arg(long, conflicts_with_all = ["exit_after_spp", "screenshot"])]
     bench: bool,
@@ -146,6 +152,8 @@ pub fn run(args: ViewArgs, restore: bool) -> Result<(), Failure> {
         display,
         exit_after_spp: args.exit_after_spp,
         screenshot: args.screenshot,
+        shown_size: args.save_as_shown.is_some().then_some(args.shown_size),
+        save_as_shown: args.save_as_shown,
         restore,
         bench: args.bench,
         reference: args.reference,

@@ -13,6 +13,7 @@ use ab_glyph::{Font, GlyphId, PxScale, ScaleFont, point};
 use glam::Vec2;
 use image::RgbImage;
 
+use crate::render::color::{linear_to_srgb, srgb_to_linear};
 use crate::tools::font::dejavu_sans;
 
 /// An 8-bit sRGB colour.
@@ -118,6 +119,66 @@ impl Canvas {
         for (y, line) in srgb.chunks_exact(row).enumerate() {
             let start = self.index(rect.x, rect.y + y as u32);
             self.pixels[start..start + row].copy_from_slice(line);
+        }
+    }
+
+    /// Draws `srgb` (`width` × `height` RGB8 pixels, row-major from the top)
+    /// into `rect` (within the canvas), scaled to its size: each pixel of
+    /// `rect` is the mean, in linear light, of the source pixels its
+    /// footprint covers, each weighted by the share it covers. Enlarged by a
+    /// whole factor, a source pixel becomes a block of its own value
+    /// (nearest neighbour, as the viewer draws its image); by a fraction,
+    /// the pixels on a block's edge mix the two neighbours; reduced, a box
+    /// filter. A pixel within one source pixel is a copy of it.
+    pub fn put_scaled(&mut self, rect: Rect, (width, height): (u32, u32), srgb: &[u8]) {
+        assert_eq!(
+            srgb.len(),
+            width as usize * height as usize * 3,
+            "image size"
+        );
+        if (rect.width, rect.height) == (width, height) {
+            return self.put(rect, srgb);
+        }
+        if rect.width == 0 || rect.height == 0 || width == 0 || height == 0 {
+            return;
+        }
+        let columns = footprints(width, rect.width);
+        let rows = footprints(height, rect.height);
+        let to_linear: Vec<f32> = (0..=255u8)
+            .map(|c| srgb_to_linear(c as f32 / 255.0))
+            .collect();
+        let source = |x: u32, y: u32| (y as usize * width as usize + x as usize) * 3;
+        for (y, row) in rows.iter().enumerate() {
+            for (x, column) in columns.iter().enumerate() {
+                let i = self.index(rect.x + x as u32, rect.y + y as u32);
+                if let ([(sx, _)], [(sy, _)]) = (column.as_slice(), row.as_slice()) {
+                    let j = source(*sx, *sy);
+                    self.pixels[i..i + 3].copy_from_slice(&srgb[j..j + 3]);
+                    continue;
+                }
+                let mut sum = [0.0f32; 3];
+                for &(sy, wy) in row {
+                    for &(sx, wx) in column {
+                        let j = source(sx, sy);
+                        for (c, total) in sum.iter_mut().enumerate() {
+                            *total += wx * wy * to_linear[srgb[j + c] as usize];
+                        }
+                    }
+                }
+                for (c, total) in sum.into_iter().enumerate() {
+                    self.pixels[i + c] = (linear_to_srgb(total) * 255.0 + 0.5) as u8;
+                }
+            }
+        }
+    }
+
+    /// Blends `colour` over every pixel of `rect` (clipped to the canvas) by `alpha`.
+    pub fn shade(&mut self, rect: Rect, colour: Rgb8, alpha: f32) {
+        let bounds = self.bounds();
+        for y in rect.y..rect.bottom().min(self.height) {
+            for x in rect.x..rect.right().min(self.width) {
+                self.blend(x as i64, y as i64, colour, alpha, bounds);
+            }
         }
     }
 
@@ -268,6 +329,25 @@ impl Canvas {
         RgbImage::from_raw(self.width, self.height, self.pixels.clone())
             .expect("the buffer matches the size")
     }
+}
+
+/// For each of `to` pixels along an axis, the pixels of `from` its
+/// footprint [i·from/to, (i+1)·from/to) covers, each with the share of the
+/// footprint it covers (they add up to 1).
+fn footprints(from: u32, to: u32) -> Vec<Vec<(u32, f32)>> {
+    let (from, to) = (from as u64, to as u64);
+    (0..to)
+        .map(|i| {
+            // the footprint in 1/to of a source pixel
+            let (start, end) = (i * from, (i + 1) * from);
+            (start / to..=(end - 1) / to)
+                .map(|s| {
+                    let covered = end.min((s + 1) * to) - start.max(s * to);
+                    (s as u32, covered as f32 / from as f32)
+                })
+                .collect()
+        })
+        .collect()
 }
 
 // ───────────────────────── text ─────────────────────────

@@ -56,11 +56,14 @@
 
 mod canvas;
 mod render;
+pub mod shown;
+#[cfg(test)]
+mod shown_tests;
 #[cfg(test)]
 mod tests;
 
 pub use canvas::{Canvas, Rect, Rgb8};
-pub use render::{GifWriter, SlideRender, frame_counts, render_slide};
+pub use render::{GifWriter, SlideRender, false_colour_srgb8, frame_counts, render_slide};
 
 use crate::lesson::{Lang, Lesson, PROBE_FRAME, StepView};
 
@@ -295,6 +298,11 @@ impl Slide {
             base.draw_text(line, size, (left, baseline), TEXT_COLOR, clip);
         }
         Self { layout, base }
+    }
+
+    /// The slide with its image region empty (the background).
+    pub fn canvas(&self) -> Canvas {
+        self.base.clone()
     }
 
     /// The slide with `srgb` (the image region's RGB8 pixels) in its image region.

@@ -113,20 +113,28 @@ fn picture(slide: &Slide, view: &StepView, film: &Film, paths: &[PathLine]) -> C
         })
         .flatten();
     let srgb = match &noise {
-        Some(noise) => noise
-            .rgba
-            .iter()
-            .flat_map(|p| [p[0], p[1], p[2]])
-            .map(|c| (linear_to_srgb(c) * 255.0 + 0.5) as u8)
-            .collect(),
+        Some(noise) => false_colour_srgb8(noise),
         None => to_srgb8(&film.radiance(terms), view.display),
     };
     let mut canvas = slide.with_image(&srgb);
+    let layout = &slide.layout;
     if let Some(noise) = &noise {
-        draw_colour_bar(&mut canvas, &slide.layout, noise);
+        let sizes = (layout.caption_size, layout.side_margin);
+        draw_colour_bar(&mut canvas, layout.right_margin(), sizes, noise);
     }
-    draw_paths(&mut canvas, slide.layout.image, paths);
+    let film_size = (layout.image.width, layout.image.height);
+    draw_paths(&mut canvas, layout.image, film_size, paths);
     canvas
+}
+
+/// The 8-bit sRGB pixels of a false-colour image.
+pub fn false_colour_srgb8(noise: &FalseColour) -> Vec<u8> {
+    noise
+        .rgba
+        .iter()
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .map(|c| (linear_to_srgb(c) * 255.0 + 0.5) as u8)
+        .collect()
 }
 
 // ───────────────────────── the probe's rays ─────────────────────────
@@ -159,15 +167,20 @@ fn role_colour(role: RayRole) -> Rgb8 {
     }
 }
 
-/// Draws `lines` (film pixels) over the image at `image`, as the viewer's
-/// path view does: solid lines over a dark outline, dashed ones for rays
-/// that added nothing, a ring where the camera ray lands.
-fn draw_paths(canvas: &mut Canvas, image: Rect, lines: &[PathLine]) {
+/// Draws `lines` (pixels of a film of `film` size) over the image at
+/// `image` (the film scaled to it), clipped to it, as the viewer's path
+/// view does: solid lines over a dark outline, dashed ones for rays that
+/// added nothing, a ring where the camera ray lands.
+pub(super) fn draw_paths(canvas: &mut Canvas, image: Rect, film: (u32, u32), lines: &[PathLine]) {
     let s = (image.height as f32 / 480.0).max(1.0);
     let offset = Vec2::new(image.x as f32, image.y as f32);
+    let scale = Vec2::new(
+        image.width as f32 / film.0.max(1) as f32,
+        image.height as f32 / film.1.max(1) as f32,
+    );
     let outline: Rgb8 = [12, 12, 12];
     for line in lines {
-        let (from, to) = (line.from + offset, line.to + offset);
+        let (from, to) = (line.from * scale + offset, line.to * scale + offset);
         let colour = role_colour(line.role);
         if line.role == RayRole::Camera {
             canvas.draw_disc(to, 5.0 * s, Some(3.5 * s), outline, image);
@@ -230,25 +243,50 @@ fn format_value(value: f32, unit: Unit) -> String {
     }
 }
 
-/// Draws the colour bar of `noise` in the margin right of the image: the
-/// mode and unit above it, the values of its ends and middle beside it.
+/// The width a colour bar of `noise` needs right of the image, with the
+/// slide's caption size and side margin `sizes`.
+pub(super) fn colour_bar_width(
+    noise: &FalseColour,
+    (caption_size, side_margin): (f32, f32),
+) -> f32 {
+    let size = 0.75 * caption_size;
+    let widest = [1.0f32, 0.5, 0.0]
+        .map(|t| canvas::text_width(&format_value(noise.value_at(t), noise.unit), size))
+        .into_iter()
+        .fold(0.0, f32::max);
+    0.6 * size + 0.8 * size + 0.6 * size + widest + side_margin
+}
+
+/// The width the colour bar of `noise` needs with its title (the mode and
+/// unit) at full size, with the slide's caption size and side margin `sizes`.
+pub(super) fn colour_bar_room(noise: &FalseColour, sizes: (f32, f32)) -> f32 {
+    let size = 0.75 * sizes.0;
+    let title = [noise.view.mode.title(), noise.unit.symbol()]
+        .map(|text| canvas::text_width(text, size))
+        .into_iter()
+        .fold(0.0, f32::max);
+    colour_bar_width(noise, sizes).max(0.6 * size + title + sizes.1)
+}
+
+/// Draws the colour bar of `noise` in `margin`, the margin right of the
+/// image, with the slide's caption size and side margin `sizes`: the mode
+/// and unit above it, the values of its ends and middle beside it.
 /// Nothing if the margin is too narrow.
-fn draw_colour_bar(canvas: &mut Canvas, layout: &SlideLayout, noise: &FalseColour) {
-    let margin = layout.right_margin();
-    let size = 0.75 * layout.caption_size;
+pub(super) fn draw_colour_bar(
+    canvas: &mut Canvas,
+    margin: Rect,
+    (caption_size, side_margin): (f32, f32),
+    noise: &FalseColour,
+) {
+    let size = 0.75 * caption_size;
     let (gap, bar_width) = (0.6 * size, 0.8 * size);
     let ticks = [1.0f32, 0.5, 0.0].map(|t| (t, format_value(noise.value_at(t), noise.unit)));
-    let widest = ticks
-        .iter()
-        .map(|(_, label)| canvas::text_width(label, size))
-        .fold(0.0, f32::max);
-    let needed = gap + bar_width + gap + widest + layout.side_margin;
-    if (margin.width as f32) < needed {
+    if (margin.width as f32) < colour_bar_width(noise, (caption_size, side_margin)) {
         return;
     }
     // the title: the mode, then the unit, on two lines
     let left = margin.x as f32 + gap;
-    let room = margin.width as f32 - gap - layout.side_margin;
+    let room = margin.width as f32 - gap - side_margin;
     let line = canvas::ascent(size) + canvas::descent(size);
     let title = [noise.view.mode.title(), noise.unit.symbol()];
     for (k, text) in title.iter().enumerate() {
