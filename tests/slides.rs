@@ -238,7 +238,47 @@ fn the_image_region_is_the_render_of_the_steps_settings_and_the_probe_draws_its_
         let region = crop(&slide, image);
         let direct = direct_render(&view);
         let differences = differing(&region, &direct);
-        if view.probe.is_some() {
+        if let Some(mut b) = view.split_settings() {
+            // A | B: A's columns left of the middle, B's (the next seed) right
+            // of it, below the labels
+            b.seed += 1;
+            let b_view = StepView {
+                settings: b,
+                ..view.clone()
+            };
+            let b_direct = direct_render(&b_view);
+            let (w, h) = (image.width, image.height);
+            let below_labels = h / 4;
+            let left = Rect::new(0, below_labels, w / 2 - 2, h - below_labels);
+            let right = Rect::new(w / 2 + 2, below_labels, w - w / 2 - 2, h - below_labels);
+            assert_eq!(
+                differing(&crop(&region, left), &crop(&direct, left)),
+                0,
+                "step {}: A",
+                i + 1
+            );
+            assert_eq!(
+                differing(&crop(&region, right), &crop(&b_direct, right)),
+                0,
+                "step {}: B",
+                i + 1
+            );
+            assert!(differing(&crop(&region, right), &crop(&direct, right)) > 0);
+        } else if view.display.layout == lumiere::render::settings::Layout::FourUp {
+            // four tiles, two by two: L0 (top left) is dark but for the light,
+            // the sum (bottom right) is lit
+            let (w, h) = (image.width / 2, image.height / 2);
+            let dark = |rect: Rect| {
+                let tile = crop(&region, rect);
+                tile.pixels()
+                    .filter(|p| p.0.iter().all(|&c| c < 10))
+                    .count() as f64
+                    / (tile.width() * tile.height()) as f64
+            };
+            let l0 = dark(Rect::new(0, h / 4, w, h - h / 4));
+            let sum = dark(Rect::new(w, h + h / 4, w, h - h / 4));
+            assert!(l0 > 0.9 && sum < 0.5, "step {}: L0 {l0}, sum {sum}", i + 1);
+        } else if view.probe.is_some() {
             // the rays: a few lines over the image, which is otherwise the render's
             probed += 1;
             let pixels = (image.width * image.height) as usize;

@@ -213,9 +213,7 @@ pub fn bands(app: &LumiereApp, ctx: &egui::Context, area: egui::Rect) -> Option<
     let margin = unit * 0.5;
     let width = area.width() - 2.0 * margin;
     let text = |string: String, size: f32, colour: egui::Color32| {
-        ctx.fonts_mut(|fonts| {
-            fonts.layout(string, egui::FontId::proportional(size), colour, width)
-        })
+        ctx.fonts_mut(|fonts| fonts.layout(string, egui::FontId::proportional(size), colour, width))
     };
     let title = text(
         format!("{}. {}", app.lesson.step + 1, step.title.get(lang)),
@@ -231,10 +229,8 @@ pub fn bands(app: &LumiereApp, ctx: &egui::Context, area: egui::Rect) -> Option<
     let top_height = title.size().y + formula.size().y + 3.0 * margin;
     let bottom_height = caption.size().y + 2.0 * margin;
     let top = egui::Rect::from_min_size(area.min, egui::vec2(area.width(), top_height));
-    let bottom = egui::Rect::from_min_max(
-        egui::pos2(area.min.x, area.max.y - bottom_height),
-        area.max,
-    );
+    let bottom =
+        egui::Rect::from_min_max(egui::pos2(area.min.x, area.max.y - bottom_height), area.max);
     Some(Bands {
         top,
         bottom,

@@ -252,6 +252,7 @@ impl SlideTexts {
 #[derive(Clone, Debug)]
 pub struct Slide {
     pub layout: SlideLayout,
+    pub texts: SlideTexts,
     base: Canvas,
 }
 
@@ -297,7 +298,11 @@ impl Slide {
             let baseline = first + k as f32 * CAPTION_PITCH * size;
             base.draw_text(line, size, (left, baseline), TEXT_COLOR, clip);
         }
-        Self { layout, base }
+        Self {
+            layout,
+            texts: texts.clone(),
+            base,
+        }
     }
 
     /// The slide with its image region empty (the background).

@@ -13,6 +13,7 @@ use image::codecs::gif::{GifEncoder, Repeat};
 use image::{Delay, Frame, RgbaImage};
 
 use super::canvas::{self, Canvas, Rect, Rgb8};
+use super::shown::{ShownImage, ShownPicture, ShownTile, SrgbImage, compose_shown};
 use super::{Slide, SlideLayout, TEXT_COLOR};
 use crate::analysis::noise::{DisplayMode, FalseColour, NoiseView, Unit, false_colour};
 use crate::analysis::path_view::{PathLine, RayRole, path_lines};
@@ -21,7 +22,9 @@ use crate::render::color::linear_to_srgb;
 use crate::render::context::RenderContext;
 use crate::render::export::{ExportError, to_srgb8};
 use crate::render::film::Film;
-use crate::render::settings::Term;
+use crate::render::four_up::{TILES, Tile};
+use crate::render::settings::{Layout, RenderSettings, Term, TermSet};
+use crate::render::settings_override::side_labels;
 use crate::render::{RenderStats, sample_stream};
 use crate::scene::Scene;
 use crate::tools::strip::{SampleCounts, render_row};
@@ -70,21 +73,43 @@ pub fn render_slide(
         (layout.image.width, layout.image.height),
         "the step's film is the slide's image"
     );
+    // a split step: B's images at each count, rendered first, for the same samples
+    let b_images = match view.split_settings() {
+        Some(mut b) => {
+            b.seed += 1; // independent noise, as in the viewer
+            let mut context = RenderContext::new(Arc::clone(&scene), b);
+            choose_continuations(&mut context);
+            let counts = frame_counts_for(view.spp, animate);
+            let mut images = Vec::new();
+            render_row(
+                &context,
+                &counts,
+                |_| {},
+                |_, film| {
+                    images.push(to_srgb8(
+                        &film.radiance(context.settings.terms),
+                        view.display,
+                    ));
+                },
+            );
+            Some((context.settings.clone(), images))
+        }
+        None => None,
+    };
     let mut context = RenderContext::new(scene, view.settings.clone());
     choose_continuations(&mut context);
     let paths = view
         .probe
         .map(|pixel| probe_lines(&context, pixel))
         .unwrap_or_default();
-    let counts = if animate {
-        SampleCounts::doubling_to(view.spp)
-    } else {
-        SampleCounts::only(view.spp)
-    };
+    let counts = frame_counts_for(view.spp, animate);
     let mut last = None;
     let stats = render_row(&context, &counts, progress, |i, film| {
         let count = counts.as_slice()[i];
-        let picture = picture(slide, view, film, &paths);
+        let b = b_images
+            .as_ref()
+            .map(|(settings, images)| (settings, images[i].as_slice()));
+        let picture = picture(slide, view, film, b, &paths);
         if animate {
             let mut labelled = picture.clone();
             draw_label(&mut labelled, layout, &format!("{count} spp"));
@@ -100,8 +125,77 @@ pub fn render_slide(
     }
 }
 
-/// The slide with the image region of `film`, its colour bar and the probe's rays.
-fn picture(slide: &Slide, view: &StepView, film: &Film, paths: &[PathLine]) -> Canvas {
+/// The sample counts a slide's render stops at: the step's, and with an
+/// animation every doubling before it.
+fn frame_counts_for(spp: u32, animate: bool) -> SampleCounts {
+    if animate {
+        SampleCounts::doubling_to(spp)
+    } else {
+        SampleCounts::only(spp)
+    }
+}
+
+/// The slide with the image region of `film`, its colour bar and the
+/// probe's rays; for a split step A | B with B's settings and image `b`,
+/// for the four-up the four tiles of `film`, as the viewer shows them.
+fn picture(
+    slide: &Slide,
+    view: &StepView,
+    film: &Film,
+    b: Option<(&RenderSettings, &[u8])>,
+    paths: &[PathLine],
+) -> Canvas {
+    let (width, height) = (film.width, film.height);
+    let shown = match b {
+        Some((b_settings, b_srgb)) => {
+            let a_srgb = to_srgb8(&film.radiance(view.settings.terms), view.display);
+            let divider = width / 2;
+            let row = width as usize * 3;
+            let mut image = a_srgb;
+            for (a_row, b_row) in image.chunks_mut(row).zip(b_srgb.chunks(row)) {
+                a_row[divider as usize * 3..].copy_from_slice(&b_row[divider as usize * 3..]);
+            }
+            let (a_label, b_label) = side_labels(&view.settings, b_settings);
+            Some(ShownImage::Split {
+                image: SrgbImage::new(width, height, image),
+                divider,
+                labels: [format!("A: {a_label}"), format!("B: {b_label}")],
+            })
+        }
+        None if view.display.layout == Layout::FourUp => {
+            let terms = view.settings.terms;
+            let tiles = TILES.map(|tile| {
+                let shown = match tile {
+                    Tile::Term(term) => TermSet::only(term),
+                    Tile::Sum => terms,
+                };
+                ShownTile {
+                    image: (!tile.is_off(terms)).then(|| {
+                        let srgb = to_srgb8(&film.radiance(shown), view.display);
+                        SrgbImage::new(width, height, srgb)
+                    }),
+                    label: tile.label(terms),
+                    off: tile.is_off(terms),
+                }
+            });
+            Some(ShownImage::FourUp {
+                tile_size: (width, height),
+                tiles: tiles.to_vec(),
+            })
+        }
+        None => None,
+    };
+    if let Some(image) = shown {
+        let picture = ShownPicture {
+            image,
+            paths: paths.to_vec(),
+            film: (width, height),
+            texts: Some(slide.texts.clone()),
+        };
+        let layout = &slide.layout;
+        return compose_shown(&picture, layout.width, layout.height)
+            .expect("a slide's layout holds its picture");
+    }
     let terms = view.settings.terms;
     let noise = (view.display_mode != DisplayMode::Image)
         .then(|| {
