@@ -240,6 +240,12 @@ fn a_noise_view_is_saved_with_its_colour_bar() {
 #[test]
 fn a_lesson_step_is_saved_as_its_slide() {
     let lesson = Lesson::load("simulation-notions").unwrap();
+    // a step of one image (no split, no four-up)
+    let step = lesson
+        .steps
+        .iter()
+        .position(|s| s.slug == "direct-extended")
+        .unwrap();
     let options = ViewOptions {
         settings: RenderSettings {
             width: 160,
@@ -247,7 +253,7 @@ fn a_lesson_step_is_saved_as_its_slide() {
             ..RenderSettings::default()
         },
         lesson: Some(lesson.clone()),
-        step: 3,
+        step,
         lang: Lang::Fr,
         ..ViewOptions::default()
     };
@@ -257,8 +263,8 @@ fn a_lesson_step_is_saved_as_its_slide() {
         .build_eframe(|cc| LumiereApp::new(cc, options).expect("the lesson opens"));
     harness.run_steps(2);
     harness.state_mut().state.stop_at_spp = Some(4);
-    let view = lesson.view(3, 160, 120).unwrap();
-    let snapshot = wait_for(&mut harness, "step 4 at 4 spp", |s| {
+    let view = lesson.view(step, 160, 120).unwrap();
+    let snapshot = wait_for(&mut harness, "the step at 4 spp", |s| {
         s.idle
             && !s.preview
             && s.samples_per_pixel() >= 4
@@ -272,7 +278,7 @@ fn a_lesson_step_is_saved_as_its_slide() {
     let picture = load(&folder);
     assert_eq!(picture.dimensions(), SIZE);
     let layout = SlideLayout::new(SIZE.0, SIZE.1);
-    let slide = Slide::new(layout.clone(), &SlideTexts::of(&lesson, 3, Lang::Fr)).canvas();
+    let slide = Slide::new(layout.clone(), &SlideTexts::of(&lesson, step, Lang::Fr)).canvas();
     for band in [layout.top_band, layout.bottom_band] {
         for y in band.y..band.bottom() {
             for x in 0..SIZE.0 {
@@ -289,7 +295,7 @@ fn a_lesson_step_is_saved_as_its_slide() {
         "the caption"
     );
     // English texts differ: the bands are the viewer's language
-    let english = Slide::new(layout.clone(), &SlideTexts::of(&lesson, 3, Lang::En)).canvas();
+    let english = Slide::new(layout.clone(), &SlideTexts::of(&lesson, step, Lang::En)).canvas();
     let caption = layout.caption_rect();
     let differs = (caption.y..caption.bottom())
         .any(|y| (caption.x..caption.right()).any(|x| english.pixel(x, y) != slide.pixel(x, y)));
