@@ -5,6 +5,7 @@
 //! | `lecture.rs` | the lecture's estimator, L0 + L1 + L2 + L3+ as the slides write them |
 //! | `fast.rs` | the fast path tracer: MIS, splitting, skipped work, counters |
 //! | `brdf.rs` | Lambert, Phong and the mirror: evaluation and sampling |
+//! | `fresnel.rs` | the Fresnel reflectance of a smooth dielectric interface |
 //! | `lights.rs` | the light sources, and which one a light sample draws |
 //! | `light_points.rs` | how a point or direction on an extended light is drawn |
 //! | `sources.rs` | a quality for each source: sources switched off, or with their own light samples |
@@ -19,6 +20,7 @@ pub mod brdf;
 pub mod continuations;
 pub mod counts;
 pub mod fast;
+pub mod fresnel;
 pub mod lecture;
 pub mod light_points;
 pub mod lights;
