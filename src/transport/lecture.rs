@@ -187,7 +187,8 @@ fn emission(context: &RenderContext, hit: &Hit, ray: &Ray) -> Vec3 {
 /// A mirror cannot sample a source (its f_r is a Dirac): it reflects the
 /// light it sees in its mirror direction. Elsewhere the sum over the sources
 /// is estimated by one source s drawn with probability P(s), proportional to
-/// its power: E[x_s / P(s)] = Σ_s x_s, for any number of sources.
+/// its power: E[x_s / P(s)] = Σ_s x_s, for any number of sources; or, with
+/// a quality for each source, by each source's own samples.
 fn direct_lighting(
     context: &RenderContext,
     x: &Surface,
