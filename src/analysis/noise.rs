@@ -166,6 +166,24 @@ pub enum Unit {
     Samples,
 }
 
+/// A tick label: few digits, an exponent for tiny values, whole sample counts.
+pub fn format_tick(value: f32, unit: Unit) -> String {
+    let magnitude = value.abs();
+    if unit == Unit::Samples || (unit == Unit::Percent && magnitude >= 10.0) {
+        format!("{value:.0}")
+    } else if magnitude == 0.0 {
+        "0".into()
+    } else if magnitude >= 100.0 {
+        format!("{value:.0}")
+    } else if magnitude >= 1.0 {
+        format!("{value:.2}")
+    } else if magnitude >= 0.01 {
+        format!("{value:.3}")
+    } else {
+        format!("{value:.1e}")
+    }
+}
+
 impl Unit {
     pub fn symbol(self) -> &'static str {
         match self {

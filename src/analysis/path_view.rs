@@ -250,6 +250,30 @@ impl FromStr for PathSample {
     }
 }
 
+/// The colour of a ray (8-bit sRGB): its term's, red if blocked, grey if it
+/// missed, white for the camera ray; the viewer and the slides draw these.
+pub fn role_rgb(role: RayRole) -> [u8; 3] {
+    match role {
+        RayRole::Camera => [255, 255, 255],
+        RayRole::ShadowBlocked { .. } => [235, 70, 60],
+        RayRole::GatherMissed { .. } => [170, 170, 170],
+        RayRole::Bounce { term }
+        | RayRole::LastBounce { term }
+        | RayRole::ShadowLit { term }
+        | RayRole::GatherLit { term } => term_rgb(term),
+    }
+}
+
+/// The colour of a term's rays and bars (8-bit sRGB).
+pub fn term_rgb(term: Term) -> [u8; 3] {
+    match term {
+        Term::L0 => [230, 180, 60],
+        Term::L1 => [90, 160, 230],
+        Term::L2 => [110, 200, 120],
+        Term::L3Plus => [200, 120, 200],
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -13,7 +13,7 @@ use eframe::egui;
 
 use crate::analysis::metrics::ReferenceImage;
 use crate::analysis::noise::{
-    self, DisplayMode, FalseColour, NO_VALUE_SRGB, NoiseSource, NoiseView, Scale, Unit,
+    self, DisplayMode, FalseColour, NO_VALUE_SRGB, NoiseSource, NoiseView, Scale, format_tick,
 };
 use crate::render::film::Film;
 use crate::render::settings::TermSet;
@@ -175,24 +175,6 @@ pub fn legend_title(
         ""
     };
     format!("{} {of}\n{}{scale}", view.mode.title(), image.unit.symbol())
-}
-
-/// A tick label: few digits, an exponent for tiny values, whole sample counts.
-pub fn format_tick(value: f32, unit: Unit) -> String {
-    let magnitude = value.abs();
-    if unit == Unit::Samples || (unit == Unit::Percent && magnitude >= 10.0) {
-        format!("{value:.0}")
-    } else if magnitude == 0.0 {
-        "0".into()
-    } else if magnitude >= 100.0 {
-        format!("{value:.0}")
-    } else if magnitude >= 1.0 {
-        format!("{value:.2}")
-    } else if magnitude >= 0.01 {
-        format!("{value:.3}")
-    } else {
-        format!("{value:.1e}")
-    }
 }
 
 fn colour32([r, g, b]: [f32; 3]) -> egui::Color32 {

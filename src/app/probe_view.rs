@@ -19,7 +19,9 @@ use std::time::{Duration, Instant};
 use eframe::egui;
 use egui_plot::{Bar, BarChart, Plot, VLine};
 
-use crate::analysis::path_view::{PathLine, PathSample, RayRole, path_lines, segment_luminance};
+use crate::analysis::path_view::{
+    self, PathLine, PathSample, RayRole, path_lines, segment_luminance,
+};
 use crate::analysis::probe::{FilmPixel, MAX_PROBE_SAMPLES, PixelProbe, TermProbe, trace_pixel};
 use crate::render::context::RenderContext;
 use crate::render::film::Film;
@@ -403,15 +405,8 @@ fn paint_path(painter: &egui::Painter, mapping: &ImageMapping, lines: &[PathLine
 
 /// The colour of a ray in the path view (`crate::analysis::path_view` lists them).
 pub fn role_colour(role: RayRole) -> egui::Color32 {
-    match role {
-        RayRole::Camera => egui::Color32::WHITE,
-        RayRole::ShadowBlocked { .. } => egui::Color32::from_rgb(235, 70, 60),
-        RayRole::GatherMissed { .. } => egui::Color32::from_gray(170),
-        RayRole::Bounce { term }
-        | RayRole::LastBounce { term }
-        | RayRole::ShadowLit { term }
-        | RayRole::GatherLit { term } => term_colour(term),
-    }
+    let [r, g, b] = path_view::role_rgb(role);
+    egui::Color32::from_rgb(r, g, b)
 }
 
 /// The probe's window; closing it ends the probe.
@@ -649,10 +644,6 @@ fn histogram_ui(ui: &mut egui::Ui, term: &TermProbe) {
 }
 
 fn term_colour(term: Term) -> egui::Color32 {
-    match term {
-        Term::L0 => egui::Color32::from_rgb(230, 180, 60),
-        Term::L1 => egui::Color32::from_rgb(90, 160, 230),
-        Term::L2 => egui::Color32::from_rgb(110, 200, 120),
-        Term::L3Plus => egui::Color32::from_rgb(200, 120, 200),
-    }
+    let [r, g, b] = path_view::term_rgb(term);
+    egui::Color32::from_rgb(r, g, b)
 }

@@ -11,7 +11,7 @@
 
 use std::sync::LazyLock;
 
-use ab_glyph::FontRef;
+use ab_glyph::{Font, FontRef, GlyphId, PxScale, ScaleFont};
 
 /// The TrueType file of Hack Regular.
 pub const HACK_REGULAR: &[u8] = include_bytes!("../../assets/fonts/Hack-Regular.ttf");
@@ -33,6 +33,27 @@ pub fn dejavu_sans() -> &'static FontRef<'static> {
         FontRef::try_from_slice(DEJAVU_SANS).expect("the embedded font is a valid TrueType file")
     });
     &FONT
+}
+
+/// The glyphs of `text` in `font` at `scale`, each with its pen position
+/// from the start (advances and kerning), and the width of the whole; '?'
+/// for the characters the font lacks.
+pub fn set_text(font: &FontRef<'static>, text: &str, scale: PxScale) -> (Vec<(GlyphId, f32)>, f32) {
+    let scaled = font.as_scaled(scale);
+    let mut glyphs = Vec::with_capacity(text.len());
+    let mut x = 0.0;
+    for c in text.chars() {
+        let id = match font.glyph_id(c) {
+            GlyphId(0) => font.glyph_id('?'),
+            id => id,
+        };
+        if let Some(&(previous, _)) = glyphs.last() {
+            x += scaled.kern(previous, id);
+        }
+        glyphs.push((id, x));
+        x += scaled.h_advance(id);
+    }
+    (glyphs, x)
 }
 
 #[cfg(test)]

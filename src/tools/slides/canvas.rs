@@ -14,7 +14,7 @@ use glam::Vec2;
 use image::RgbImage;
 
 use crate::render::color::{linear_to_srgb, srgb_to_linear};
-use crate::tools::font::dejavu_sans;
+use crate::tools::font::{self, dejavu_sans};
 
 /// An 8-bit sRGB colour.
 pub type Rgb8 = [u8; 3];
@@ -369,26 +369,9 @@ pub fn descent(size: f32) -> f32 {
     -dejavu_sans().as_scaled(px_scale(size)).descent()
 }
 
-/// The glyphs of `text` at font size `size`, each with its pen position
-/// from the start (advances and kerning), and the width of the whole; '?'
-/// for the characters the font lacks.
+/// The glyphs of `text` at font size `size`, with their pen positions, and its width.
 fn set_text(text: &str, size: f32) -> (Vec<(GlyphId, f32)>, f32) {
-    let font = dejavu_sans();
-    let scaled = font.as_scaled(px_scale(size));
-    let mut glyphs = Vec::with_capacity(text.len());
-    let mut x = 0.0;
-    for c in text.chars() {
-        let id = match font.glyph_id(c) {
-            GlyphId(0) => font.glyph_id('?'),
-            id => id,
-        };
-        if let Some(&(previous, _)) = glyphs.last() {
-            x += scaled.kern(previous, id);
-        }
-        glyphs.push((id, x));
-        x += scaled.h_advance(id);
-    }
-    (glyphs, x)
+    font::set_text(dejavu_sans(), text, px_scale(size))
 }
 
 /// Width of one line of `text` at font size `size`, in pixels.

@@ -15,15 +15,15 @@ use image::{Delay, Frame, RgbaImage};
 use super::canvas::{self, Canvas, Rect, Rgb8};
 use super::shown::{ShownImage, ShownPicture, ShownTile, SrgbImage, compose_shown};
 use super::{Slide, SlideLayout, TEXT_COLOR};
-use crate::analysis::noise::{DisplayMode, FalseColour, NoiseView, Unit, false_colour};
-use crate::analysis::path_view::{PathLine, RayRole, path_lines};
+use crate::analysis::noise::{DisplayMode, FalseColour, NoiseView, false_colour, format_tick};
+use crate::analysis::path_view::{PathLine, RayRole, path_lines, role_rgb};
 use crate::lesson::StepView;
 use crate::render::color::linear_to_srgb;
 use crate::render::context::RenderContext;
 use crate::render::export::{ExportError, to_srgb8};
 use crate::render::film::Film;
 use crate::render::four_up::{TILES, Tile};
-use crate::render::settings::{Layout, RenderSettings, Term, TermSet};
+use crate::render::settings::{Layout, RenderSettings, TermSet};
 use crate::render::settings_override::side_labels;
 use crate::render::{RenderStats, sample_stream};
 use crate::scene::Scene;
@@ -243,24 +243,6 @@ fn probe_lines(context: &RenderContext, (x, y): (u32, u32)) -> Vec<PathLine> {
     path_lines(&log, &context.camera, context.settings.terms)
 }
 
-/// The colour of a ray: its term's, or red (blocked), grey (missed), white (camera).
-fn role_colour(role: RayRole) -> Rgb8 {
-    match role {
-        RayRole::Camera => [255, 255, 255],
-        RayRole::ShadowBlocked { .. } => [235, 70, 60],
-        RayRole::GatherMissed { .. } => [170, 170, 170],
-        RayRole::Bounce { term }
-        | RayRole::LastBounce { term }
-        | RayRole::ShadowLit { term }
-        | RayRole::GatherLit { term } => match term {
-            Term::L0 => [230, 180, 60],
-            Term::L1 => [90, 160, 230],
-            Term::L2 => [110, 200, 120],
-            Term::L3Plus => [200, 120, 200],
-        },
-    }
-}
-
 /// Draws `lines` (pixels of a film of `film` size) over the image at
 /// `image` (the film scaled to it), clipped to it, as the viewer's path
 /// view does: solid lines over a dark outline, dashed ones for rays that
@@ -275,7 +257,7 @@ pub(super) fn draw_paths(canvas: &mut Canvas, image: Rect, film: (u32, u32), lin
     let outline: Rgb8 = [12, 12, 12];
     for line in lines {
         let (from, to) = (line.from * scale + offset, line.to * scale + offset);
-        let colour = role_colour(line.role);
+        let colour = role_rgb(line.role);
         if line.role == RayRole::Camera {
             canvas.draw_disc(to, 5.0 * s, Some(3.5 * s), outline, image);
             canvas.draw_disc(to, 5.0 * s, Some(2.0 * s), colour, image);
@@ -320,23 +302,6 @@ fn draw_label(canvas: &mut Canvas, layout: &SlideLayout, text: &str) {
     canvas.draw_text(text, size, (x as f32 + pad, baseline), TEXT_COLOR, rect);
 }
 
-/// A value of the colour bar: few digits, an exponent for tiny values,
-/// whole sample counts.
-fn format_value(value: f32, unit: Unit) -> String {
-    let magnitude = value.abs();
-    if unit == Unit::Samples || (unit == Unit::Percent && magnitude >= 10.0) || magnitude >= 100.0 {
-        format!("{value:.0}")
-    } else if magnitude == 0.0 {
-        "0".into()
-    } else if magnitude >= 1.0 {
-        format!("{value:.2}")
-    } else if magnitude >= 0.01 {
-        format!("{value:.3}")
-    } else {
-        format!("{value:.1e}")
-    }
-}
-
 /// The width a colour bar of `noise` needs right of the image, with the
 /// slide's caption size and side margin `sizes`.
 pub(super) fn colour_bar_width(
@@ -345,7 +310,7 @@ pub(super) fn colour_bar_width(
 ) -> f32 {
     let size = 0.75 * caption_size;
     let widest = [1.0f32, 0.5, 0.0]
-        .map(|t| canvas::text_width(&format_value(noise.value_at(t), noise.unit), size))
+        .map(|t| canvas::text_width(&format_tick(noise.value_at(t), noise.unit), size))
         .into_iter()
         .fold(0.0, f32::max);
     0.6 * size + 0.8 * size + 0.6 * size + widest + side_margin
@@ -374,7 +339,7 @@ pub(super) fn draw_colour_bar(
 ) {
     let size = 0.75 * caption_size;
     let (gap, bar_width) = (0.6 * size, 0.8 * size);
-    let ticks = [1.0f32, 0.5, 0.0].map(|t| (t, format_value(noise.value_at(t), noise.unit)));
+    let ticks = [1.0f32, 0.5, 0.0].map(|t| (t, format_tick(noise.value_at(t), noise.unit)));
     if (margin.width as f32) < colour_bar_width(noise, (caption_size, side_margin)) {
         return;
     }

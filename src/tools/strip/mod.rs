@@ -48,7 +48,7 @@ use crate::render::settings::{
 };
 use crate::render::{PassBuffer, RenderStats, render_pass};
 use crate::scene::Scene;
-use crate::tools::font::hack_regular;
+use crate::tools::font::{self, hack_regular};
 use crate::transport::splitting::choose_continuations;
 
 /// Largest strip side in pixels: a PNG a slide can hold, a buffer memory can.
@@ -579,26 +579,9 @@ impl StripImage {
     }
 }
 
-/// The glyphs of `text` at `size` pixels, each with its pen position from
-/// the start (advances and kerning), and the width of the whole: '?' for
-/// the characters the font lacks.
+/// The glyphs of `text` at `size` pixels, with their pen positions, and its width.
 fn set_text(text: &str, size: u32) -> (Vec<(GlyphId, f32)>, f32) {
-    let font = hack_regular();
-    let scaled = font.as_scaled(PxScale::from(size as f32));
-    let mut glyphs = Vec::with_capacity(text.len());
-    let mut x = 0.0;
-    for c in text.chars() {
-        let id = match font.glyph_id(c) {
-            GlyphId(0) => font.glyph_id('?'),
-            id => id,
-        };
-        if let Some(&(previous, _)) = glyphs.last() {
-            x += scaled.kern(previous, id);
-        }
-        glyphs.push((id, x));
-        x += scaled.h_advance(id);
-    }
-    (glyphs, x)
+    font::set_text(hack_regular(), text, PxScale::from(size as f32))
 }
 
 /// Width of `text` at `size` pixels.
