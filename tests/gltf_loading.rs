@@ -536,7 +536,7 @@ fn the_glossy_cornell_box_maps_its_materials_onto_phong() {
             .iter()
             .find(|m| m.name == name)
             .unwrap_or_else(|| panic!("no material {name}"));
-        resolve_brdf(material, material.base_color, &settings)
+        resolve_brdf(material, material.base_color, &settings, || 0.5)
     };
     let Brdf::Phong { kd, ks, exponent } = brdf("glossy floor") else {
         panic!("the floor is not Phong");
@@ -558,7 +558,7 @@ fn the_glossy_cornell_box_maps_its_materials_onto_phong() {
         .find(|o| o.name == "short block")
         .expect("the short block");
     let material = &scene.materials[short_block.material as usize];
-    let default = resolve_brdf(material, material.base_color, &settings);
+    let default = resolve_brdf(material, material.base_color, &settings, || 0.5);
     assert_eq!(
         default,
         Brdf::Phong {
@@ -594,7 +594,8 @@ fn a_primitive_reads_each_texture_at_its_own_uv_set() {
             let (uv0, uv1) = (point.uv(&scene, 0), point.uv(&scene, 1));
             // set 1 is set 0 with u and v swapped and doubled
             assert!((uv1 - 2.0 * Vec2::new(uv0.y, uv0.x)).length() < 1e-5);
-            let Brdf::Lambert { albedo } = point.brdf(&scene, &RenderSettings::default()) else {
+            let Brdf::Lambert { albedo } = point.brdf(&scene, &RenderSettings::default(), point.ng)
+            else {
                 panic!("the wall is Lambert");
             };
             let reflected = material.base_color * texture.sample(uv1);
@@ -607,4 +608,148 @@ fn a_primitive_reads_each_texture_at_its_own_uv_set() {
     }
     // the sets read different texels, so reading the wrong one would show
     assert!(differing >= 2, "{differing}");
+}
+
+/// `cornell-glass`'s glass material with its extensions replaced by
+/// `extensions` (JSON) and its roughness by `roughness`, loaded.
+fn glass_variant(extensions: &str, roughness: f32) -> Result<lumiere::Scene, String> {
+    let text = std::str::from_utf8(
+        lumiere::scene::builtin::SCENES
+            .iter()
+            .find(|s| s.name == "cornell-glass")
+            .unwrap()
+            .gltf(),
+    )
+    .unwrap();
+    let mut json: serde_json::Value = serde_json::from_str(text).unwrap();
+    let materials = json["materials"].as_array_mut().unwrap();
+    let glass = materials.iter_mut().find(|m| m["name"] == "glass").unwrap();
+    glass["extensions"] = serde_json::from_str(extensions).unwrap();
+    glass["pbrMetallicRoughness"]["roughnessFactor"] = roughness.into();
+    load_slice(json.to_string().as_bytes(), "glass variant", None).map_err(|e| e.to_string())
+}
+
+fn glass_material(scene: &lumiere::Scene) -> &lumiere::scene::Material {
+    scene.materials.iter().find(|m| m.name == "glass").unwrap()
+}
+
+/// KHR_materials_transmission and KHR_materials_ior: the built-in glass
+/// block is glass of η 1.5, seen from inside with η inverted; another
+/// index, a partial transmission (glass by that share, the rest the
+/// material's own model), and the warnings for what is not modelled.
+#[test]
+fn transmission_and_ior_make_glass() {
+    use lumiere::render::settings::RenderSettings;
+    use lumiere::scene::BrdfModel;
+    use lumiere::transport::brdf::Brdf;
+    use lumiere::transport::surface::{SurfacePoint, resolve_brdf};
+    let scene = lumiere::scene::builtin::load("cornell-glass").unwrap();
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let material = glass_material(&scene);
+    assert_eq!((material.transmission, material.ior), (1.0, 1.5));
+    assert_eq!(material.brdf_model(), BrdfModel::Glass);
+    let block = scene
+        .objects
+        .iter()
+        .find(|o| o.name == "glass block")
+        .unwrap();
+    let point = SurfacePoint::new(&scene, block.triangles.start, Vec3::splat(1.0 / 3.0));
+    let settings = RenderSettings::default();
+    let outside = point.brdf(&scene, &settings, point.ng);
+    assert_eq!(
+        outside,
+        Brdf::Glass {
+            tint: Vec3::ONE,
+            eta: 1.5
+        }
+    );
+    let inside = point.brdf(&scene, &settings, -point.ng);
+    assert_eq!(
+        inside,
+        Brdf::Glass {
+            tint: Vec3::ONE,
+            eta: 1.0 / 1.5
+        }
+    );
+
+    let denser = glass_variant(
+        r#"{"KHR_materials_transmission": {"transmissionFactor": 1.0}, "KHR_materials_ior": {"ior": 2.4}}"#,
+        0.0,
+    )
+    .unwrap();
+    assert_eq!(glass_material(&denser).ior, 2.4);
+    // without KHR_materials_ior: glTF's 1.5
+    let default_ior = glass_variant(
+        r#"{"KHR_materials_transmission": {"transmissionFactor": 1.0}}"#,
+        0.0,
+    )
+    .unwrap();
+    assert_eq!(glass_material(&default_ior).ior, 1.5);
+
+    // transmission 0.3 on a Lambert material: glass at 30% of the points
+    let partial = glass_variant(
+        r#"{"KHR_materials_transmission": {"transmissionFactor": 0.3}}"#,
+        1.0,
+    )
+    .unwrap();
+    let material = glass_material(&partial);
+    assert_eq!(material.brdf_model(), BrdfModel::Lambert);
+    let picks = 10_000;
+    let glass = (0..picks)
+        .filter(|i| {
+            let u = (*i as f32 + 0.5) / picks as f32;
+            let brdf = resolve_brdf(material, material.base_color, &settings, || u);
+            matches!(brdf, Brdf::Glass { .. })
+        })
+        .count();
+    assert_eq!(glass, 3000);
+    // the hashed pick at points of the block: a binomial share of 0.3 (|z| < 4.5)
+    let block = partial
+        .objects
+        .iter()
+        .find(|o| o.name == "glass block")
+        .unwrap();
+    let mut glass = 0u32;
+    let mut points = 0u32;
+    for triangle in block.triangles.clone() {
+        for i in 0..400 {
+            let b = Vec3::new(0.2 + 0.0015 * i as f32, 0.3, 0.5 - 0.0015 * i as f32);
+            let point = SurfacePoint::new(&partial, triangle, b);
+            points += 1;
+            glass += u32::from(matches!(
+                point.brdf(&partial, &settings, point.ng),
+                Brdf::Glass { .. }
+            ));
+        }
+    }
+    let (n, p) = (points as f64, 0.3);
+    let z = (glass as f64 - n * p) / (n * p * (1.0 - p)).sqrt();
+    assert!(z.abs() < 4.5, "{glass} of {points} glass (z = {z:.2})");
+
+    let rough = glass_variant(
+        r#"{"KHR_materials_transmission": {"transmissionFactor": 1.0}}"#,
+        0.4,
+    )
+    .unwrap();
+    assert!(
+        rough
+            .warnings
+            .iter()
+            .any(|w| w.contains("rendered as smooth glass")),
+        "{:?}",
+        rough.warnings
+    );
+    let thin = glass_variant(
+        r#"{"KHR_materials_transmission": {"transmissionFactor": 1.0}, "KHR_materials_ior": {"ior": 0.5}}"#,
+        0.0,
+    )
+    .unwrap();
+    assert_eq!(glass_material(&thin).ior, 1.0);
+    assert!(
+        thin.warnings
+            .iter()
+            .any(|w| w.contains("ior 0.5 raised to 1")),
+        "{:?}",
+        thin.warnings
+    );
 }

@@ -213,6 +213,32 @@ fn the_integrators_agree_on_every_test_scene() {
     }
 }
 
+/// Glass: the Cornell box's glass block under every light mode (the
+/// caustics of a point light cannot be found by either), and a block half
+/// glass, half Lambert (glTF transmission 0.5), each a Dirac that neither
+/// integrator can sample a light from.
+#[test]
+fn the_integrators_agree_through_glass() {
+    let glass_box = builtin::load("cornell-glass").unwrap();
+    for light_mode in LightMode::all() {
+        let settings = RenderSettings {
+            light_mode,
+            ..settings(24, 18)
+        };
+        let what = format!("cornell-glass, lights {light_mode}");
+        assert_integrators_agree(&what, &glass_box, &settings, 512);
+    }
+    let mut half = glass_box.clone();
+    for material in &mut half.materials {
+        if material.transmission > 0.0 {
+            material.transmission = 0.5;
+            material.roughness = 1.0;
+            material.base_color = Vec3::new(0.9, 0.6, 0.3);
+        }
+    }
+    assert_integrators_agree("cornell, block half glass", &half, &settings(24, 18), 512);
+}
+
 #[test]
 fn the_integrators_agree_under_the_sun_a_point_and_a_spot_light() {
     let scene = punctual_scene();

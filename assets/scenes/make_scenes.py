@@ -10,6 +10,7 @@ Conventions (docs: /work/shared/course/COURSE.md, lumiere's loader):
   emitted from the front face only (counter-clockwise winding seen from the
   side it lights);
 * metallic 0 & roughness 1 -> Lambert; metallic 1 & roughness 0 -> mirror;
+  KHR_materials_transmission 1 & roughness 0 -> glass of KHR_materials_ior;
   otherwise normalised Phong with kd = base (1 - metallic),
   ks = mix(0.04, base, metallic), n = 2 / alpha^2 - 2, alpha = roughness^2;
 * the camera is the first glTF camera (yfov; the aspect comes from the image).
@@ -19,6 +20,7 @@ Scenes:
 * penumbra.gltf       an occluder on a post under a point light (a sphere with --lights area)
 * indirect-room.gltf  a closed room whose visible surfaces get no direct light
 * cornell-{point,spot,mirror,glossy}.gltf  copies of tests/data/ variants
+* cornell-glass.gltf  the Cornell box with a closed glass tall block
 """
 
 import base64
@@ -605,8 +607,95 @@ def cornell_copies():
         print("copied %s -> %s" % (source, target))
 
 
+# --------------------------------------------------------------------------
+# 5. the Cornell box with a glass block
+
+
+def cornell_glass():
+    """The built-in Cornell box (assets/cornell-box.gltf) with its tall block
+    made of clear glass (ior 1.5): the published block's four sides and top,
+    plus a bottom face so that the block is closed, lifted 1 mm off the
+    floor so that its bottom and the floor do not coincide. The other
+    meshes, materials, light and camera are the box's, unchanged."""
+    source = os.path.join(REPO, "assets", "cornell-box.gltf")
+    with open(source) as f:
+        original = json.load(f)
+    blob = bytearray(base64.b64decode(original["buffers"][0]["uri"].split(",", 1)[1]))
+    names = [m["name"] for m in original["meshes"]]
+    tall = names.index("tall block")
+    accessor = original["accessors"][original["meshes"][tall]["primitives"][0]["attributes"]["POSITION"]]
+    view = original["bufferViews"][accessor["bufferView"]]
+    start = view.get("byteOffset", 0) + accessor.get("byteOffset", 0)
+    corners = set(struct.unpack_from("<3f", blob, start + 12 * i) for i in range(accessor["count"]))
+    bottom = [c for c in corners if c[1] == 0.0]
+    top_y = max(c[1] for c in corners)
+    # the footprint in order around its centre
+    cx = sum(c[0] for c in bottom) / 4.0
+    cz = sum(c[2] for c in bottom) / 4.0
+    bottom.sort(key=lambda c: math.atan2(c[2] - cz, c[0] - cx))
+    lift = 0.001
+    low = [[c[0], lift, c[2]] for c in bottom]
+    high = [[c[0], top_y, c[2]] for c in bottom]
+    centre = [cx, (lift + top_y) / 2.0, cz]
+    block = Geometry()
+
+    def face(p0, p1, p2, p3):
+        # wind each quad so that its front (normal) faces away from the centre
+        if dot(cross(sub(p1, p0), sub(p3, p0)), sub(p0, centre)) < 0.0:
+            p0, p1, p2, p3 = p3, p2, p1, p0
+        block.quad(p0, p1, p2, p3)
+
+    for i in range(4):
+        j = (i + 1) % 4
+        face(low[i], low[j], high[j], high[i])
+    face(*high)
+    face(*low)
+
+    g = Gltf("Cornell box, glass tall block")
+    g.blob = blob
+    for key in ("accessors", "bufferViews", "materials", "cameras"):
+        g.doc[key] = original[key]
+    g.doc["meshes"] = [m for i, m in enumerate(original["meshes"]) if i != tall]
+    for node in original["nodes"]:
+        if node.get("mesh") == tall:
+            continue
+        node = dict(node)
+        if node.get("mesh", -1) > tall:
+            node["mesh"] -= 1
+        g.node(node)
+    g.doc["materials"].append(
+        {
+            "name": "glass",
+            "pbrMetallicRoughness": {
+                "baseColorFactor": [1.0, 1.0, 1.0, 1.0],
+                "metallicFactor": 0.0,
+                "roughnessFactor": 0.0,
+            },
+            "extensions": {
+                "KHR_materials_transmission": {"transmissionFactor": 1.0},
+                "KHR_materials_ior": {"ior": 1.5},
+            },
+        }
+    )
+    g.mesh("glass block", block, len(g.doc["materials"]) - 1)
+    extras = dict(original["asset"].get("extras", {}))
+    extras["title"] = "Cornell box, glass tall block"
+    extras["sources"] = dict(extras.get("sources", {}))
+    extras["sources"]["glass"] = (
+        "the tall block of the published data, closed by a bottom face and lifted 1 mm off the floor, "
+        "made of clear glass: KHR_materials_transmission 1, KHR_materials_ior 1.5, roughness 0, base colour white"
+    )
+    g.doc["asset"]["extras"] = extras
+    g.extensions = set(original.get("extensionsUsed", [])) | {
+        "KHR_materials_transmission",
+        "KHR_materials_ior",
+    }
+    g.write("cornell-glass.gltf")
+
+
 if __name__ == "__main__":
     veach_mis()
     penumbra()
     indirect_room()
     cornell_copies()
+    cornell_glass()

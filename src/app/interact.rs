@@ -192,17 +192,26 @@ impl LumiereApp {
     }
 }
 
-/// The course's model of a material, as metallic-roughness parameters.
+/// The course's model of a material, as metallic-roughness parameters and
+/// the glass share (the index of refraction stays the material's).
 pub fn set_model(material: &mut Material, model: BrdfModel) {
-    let (metallic, roughness) = match model {
-        BrdfModel::Lambert => (0.0, 1.0),
-        BrdfModel::Mirror => (1.0, 0.0),
+    let (metallic, roughness, transmission) = match model {
+        BrdfModel::Lambert => (0.0, 1.0, 0.0),
+        BrdfModel::Mirror => (1.0, 0.0, 0.0),
         // invert n = 2/α² − 2 with α = roughness²
-        BrdfModel::Phong { exponent } => (0.0, (2.0 / (exponent + 2.0)).sqrt().sqrt()),
+        BrdfModel::Phong { exponent } => (0.0, (2.0 / (exponent + 2.0)).sqrt().sqrt(), 0.0),
+        BrdfModel::Glass => (0.0, 0.0, 1.0),
     };
     material.metallic = metallic;
     material.roughness = roughness;
+    material.transmission = transmission;
 }
+
+/// What glass does, and to which term its light goes.
+pub const GLASS_TOOLTIP: &str = "Smooth glass: Fresnel reflection and Snell refraction, tinted by \
+the colour. Each refraction is an interaction like a reflection: a light seen through a glass \
+block is L2, a caustic on the floor under it L3. Glass cannot sample a light: its direct \
+lighting comes from its one direction.";
 
 /// The selected object's controls: its reflection model and colour.
 pub fn selection_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
@@ -232,11 +241,14 @@ pub fn selection_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                     BrdfModel::Lambert => "Lambert",
                     BrdfModel::Phong { .. } => "Phong",
                     BrdfModel::Mirror => "Mirror",
+                    BrdfModel::Glass => "Glass",
                 })
                 .show_ui(ui, |ui| {
                     ui.selectable_value(&mut chosen, BrdfModel::Lambert, "Lambert");
                     ui.selectable_value(&mut chosen, BrdfModel::Phong { exponent: 32.0 }, "Phong");
                     ui.selectable_value(&mut chosen, BrdfModel::Mirror, "Mirror");
+                    ui.selectable_value(&mut chosen, BrdfModel::Glass, "Glass")
+                        .on_hover_text(GLASS_TOOLTIP);
                 });
             let mut exponent = match model {
                 BrdfModel::Phong { exponent } => exponent,
@@ -250,6 +262,25 @@ pub fn selection_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                             .text("exponent"),
                     )
                     .changed();
+            // glass, or a material partly glass: its share and index of refraction
+            let (mut transmission, mut ior) = (material.transmission, material.ior);
+            let glass_changed = material.glass_weight() > 0.0 && {
+                let share = model != BrdfModel::Glass
+                    && ui
+                        .add(egui::Slider::new(&mut transmission, 0.0..=1.0).text("glass share"))
+                        .on_hover_text(
+                            "the share of the material that is glass (glTF transmissionFactor)",
+                        )
+                        .changed();
+                let index = ui
+                    .add(
+                        egui::Slider::new(&mut ior, 1.0..=crate::render::settings::MAX_IOR)
+                            .text("η (index of refraction)"),
+                    )
+                    .on_hover_text("glass 1.5, water 1.33, diamond 2.42")
+                    .changed();
+                share || index
+            };
             let color_changed = ui
                 .horizontal(|ui| {
                     let label = ui.label("colour");
@@ -263,6 +294,11 @@ pub fn selection_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             }
             if exponent_changed {
                 set_model(app.own_material(object), BrdfModel::Phong { exponent });
+            }
+            if glass_changed {
+                let material = app.own_material(object);
+                material.transmission = transmission;
+                material.ior = ior;
             }
             if color_changed {
                 app.own_material(object).base_color = Vec3::from_array(color);

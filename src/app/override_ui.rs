@@ -130,6 +130,7 @@ fn brdf_text(brdf: BrdfOverride) -> String {
         BrdfOverride::Lambert => "Lambert",
         BrdfOverride::Phong => "Phong",
         BrdfOverride::Mirror => "mirror",
+        BrdfOverride::Glass => "glass",
     }
     .into()
 }

@@ -452,6 +452,7 @@ fn brdf_text(brdf: BrdfOverride) -> &'static str {
         BrdfOverride::Lambert => "Lambert",
         BrdfOverride::Phong => "Phong",
         BrdfOverride::Mirror => "Mirror",
+        BrdfOverride::Glass => "Glass",
     }
 }
 

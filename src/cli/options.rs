@@ -9,7 +9,7 @@ use lumiere::render::settings::{
 use lumiere::{BrdfOverride, LightMode, RenderSettings, TermSet};
 
 use super::parsers::{
-    IndirectSamples, parse_adaptive_threshold, parse_exposure, parse_indirect_samples,
+    IndirectSamples, parse_adaptive_threshold, parse_exposure, parse_indirect_samples, parse_ior,
     parse_light_radius, parse_phong_exponent, parse_source_quality,
 };
 
@@ -31,12 +31,15 @@ pub struct SceneOptions {
     /// Radius in metres of the sphere lights of `--lights area` (default: 2% of the scene's diagonal).
     #[arg(long, value_parser = parse_light_radius)]
     pub light_radius: Option<f32>,
-    /// Reflection model of every material: authored, lambert, phong or mirror.
+    /// Model of every material: authored, lambert, phong, mirror or glass.
     #[arg(long, default_value = "authored")]
     pub brdf: BrdfOverride,
     /// Phong exponent for `--brdf phong`.
     #[arg(long, default_value_t = 32.0, value_parser = parse_phong_exponent)]
     pub phong_exponent: f32,
+    /// Index of refraction for `--brdf glass` (authored glass keeps its own).
+    #[arg(long, default_value_t = 1.5, value_parser = parse_ior)]
+    pub ior: f32,
     /// Most reflections per path (caps L3+).
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=100_000))]
     pub max_bounces: u32,
@@ -94,6 +97,7 @@ impl SceneOptions {
             light_radius: self.light_radius,
             brdf: self.brdf,
             phong_exponent: self.phong_exponent,
+            glass_ior: self.ior,
             max_bounces: self.max_bounces,
             seed: self.seed,
             integrator: self.integrator,

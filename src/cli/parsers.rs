@@ -76,6 +76,16 @@ pub fn parse_phong_exponent(s: &str) -> Result<f32, String> {
     parse_in_range(s, 0.0..=1e6, "Phong exponent")
 }
 
+/// `--ior`: an index of refraction, within 1..=MAX_IOR.
+pub fn parse_ior(s: &str) -> Result<f32, String> {
+    parse_in_range(
+        s,
+        1.0..=f64::from(lumiere::render::settings::MAX_IOR),
+        "index of refraction",
+    )
+    .map_err(|e| format!("{e} (glass: 1.5, water: 1.33, diamond: 2.42)"))
+}
+
 /// `--adaptive`: a fraction of the pixel's value, within (0, 1].
 pub fn parse_adaptive_threshold(s: &str) -> Result<f32, String> {
     parse_in_range(

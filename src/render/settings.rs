@@ -219,6 +219,8 @@ pub enum BrdfOverride {
     Lambert,
     Phong,
     Mirror,
+    /// Smooth glass of index of refraction `glass_ior`, tinted by the base colour.
+    Glass,
 }
 
 /// How direct lighting from extended lights is estimated at each vertex.
@@ -552,6 +554,10 @@ pub fn unknown_choice<T: Choice>(s: &str) -> String {
     )
 }
 
+/// The largest index of refraction a setting may ask for (germanium's is
+/// about 4; beyond, nothing real).
+pub const MAX_IOR: f32 = 5.0;
+
 /// Everything that decides the radiance a render estimates (not how long it runs).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
@@ -567,6 +573,9 @@ pub struct RenderSettings {
     pub phong_exponent: f32,
     /// Specular weight ks used by `BrdfOverride::Phong` (kd = base colour × (1 − ks)).
     pub phong_specular: f32,
+    /// Index of refraction used by `BrdfOverride::Glass` (authored glass
+    /// keeps its own).
+    pub glass_ior: f32,
     /// Most reflections a path may have (caps L3+).
     pub max_bounces: u32,
     pub seed: u64,
@@ -654,6 +663,7 @@ impl Default for RenderSettings {
             brdf: BrdfOverride::Authored,
             phong_exponent: 32.0,
             phong_specular: 0.25,
+            glass_ior: crate::scene::DEFAULT_IOR,
             max_bounces: 64,
             seed: 0,
             integrator: Integrator::default(),
@@ -700,6 +710,12 @@ impl RenderSettings {
             return Err(format!(
                 "Phong specular weight {} must be within 0..=1",
                 self.phong_specular
+            ));
+        }
+        if !(self.glass_ior.is_finite() && (1.0..=MAX_IOR).contains(&self.glass_ior)) {
+            return Err(format!(
+                "index of refraction {} must be within 1..={MAX_IOR}",
+                self.glass_ior
             ));
         }
         if self.max_bounces == 0 {

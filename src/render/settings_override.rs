@@ -45,6 +45,9 @@ pub struct SettingsOverride {
     pub phong_exponent: Option<f32>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub phong_specular: Option<f32>,
+    /// The index of refraction of `brdf = "glass"`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub glass_ior: Option<f32>,
     #[serde(with = "named", skip_serializing_if = "Option::is_none")]
     pub integrator: Option<Integrator>,
     #[serde(with = "named", skip_serializing_if = "Option::is_none")]
@@ -81,6 +84,7 @@ impl SettingsOverride {
         set(&mut b.brdf, self.brdf);
         set(&mut b.phong_exponent, self.phong_exponent);
         set(&mut b.phong_specular, self.phong_specular);
+        set(&mut b.glass_ior, self.glass_ior);
         set(&mut b.integrator, self.integrator);
         set(&mut b.light_sampling, self.light_sampling);
         set(&mut b.mis_heuristic, self.mis_heuristic);
@@ -124,6 +128,7 @@ impl SettingsOverride {
             Setting::Brdf => self.brdf.is_some(),
             Setting::PhongExponent => self.phong_exponent.is_some(),
             Setting::PhongSpecular => self.phong_specular.is_some(),
+            Setting::GlassIor => self.glass_ior.is_some(),
             Setting::Integrator => self.integrator.is_some(),
             Setting::LightSampling => self.light_sampling.is_some(),
             Setting::MisHeuristic => self.mis_heuristic.is_some(),
@@ -149,6 +154,7 @@ pub enum Setting {
     Brdf,
     PhongExponent,
     PhongSpecular,
+    GlassIor,
     Integrator,
     LightSampling,
     MisHeuristic,
@@ -231,6 +237,7 @@ fn phrases(s: &RenderSettings) -> Vec<(Setting, String)> {
                 BrdfOverride::Lambert => "Lambert",
                 BrdfOverride::Phong => "Phong",
                 BrdfOverride::Mirror => "mirror",
+                BrdfOverride::Glass => "glass",
             }
             .into(),
         ),
@@ -242,6 +249,7 @@ fn phrases(s: &RenderSettings) -> Vec<(Setting, String)> {
             Setting::PhongSpecular,
             format!("Phong ks = {}", s.phong_specular),
         ),
+        (Setting::GlassIor, format!("glass η = {}", s.glass_ior)),
         (
             Setting::Integrator,
             format!("{} integrator", s.integrator.label()),

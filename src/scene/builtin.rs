@@ -21,7 +21,7 @@ pub struct BuiltinScene {
 
 /// The scene library: the Cornell box and its variants, and one scene per
 /// lesson (`assets/scenes/README.md` says how each was made and its licence).
-pub const SCENES: [BuiltinScene; 8] = [
+pub const SCENES: [BuiltinScene; 9] = [
     BuiltinScene {
         name: "cornell",
         description: "the Cornell box: an area light in the ceiling, a red and a green wall, two white blocks",
@@ -41,6 +41,11 @@ pub const SCENES: [BuiltinScene; 8] = [
         name: "cornell-mirror",
         description: "the Cornell box with a mirror tall block",
         gltf: include_bytes!("../../assets/scenes/cornell-mirror.gltf"),
+    },
+    BuiltinScene {
+        name: "cornell-glass",
+        description: "the Cornell box with a clear glass tall block (η = 1.5): the box seen through it is L3, its caustic on the floor L3 and beyond",
+        gltf: include_bytes!("../../assets/scenes/cornell-glass.gltf"),
     },
     BuiltinScene {
         name: "cornell-glossy",
@@ -63,6 +68,13 @@ pub const SCENES: [BuiltinScene; 8] = [
         gltf: include_bytes!("../../assets/scenes/indirect-room.gltf"),
     },
 ];
+
+impl BuiltinScene {
+    /// The scene's glTF file, as built in.
+    pub fn gltf(&self) -> &'static [u8] {
+        self.gltf
+    }
+}
 
 /// Whether `spec` names a built-in scene (rather than a file).
 pub fn is_builtin(spec: &str) -> bool {

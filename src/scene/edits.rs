@@ -27,6 +27,16 @@ pub struct ObjectEdit {
     pub roughness: f32,
     /// Emitted radiance, W·m⁻²·sr⁻¹.
     pub emission: Vec3,
+    /// Glass share and index of refraction (absent from older sidecars:
+    /// opaque, 1.5).
+    #[serde(default)]
+    pub transmission: f32,
+    #[serde(default = "default_ior")]
+    pub ior: f32,
+}
+
+fn default_ior() -> f32 {
+    super::DEFAULT_IOR
 }
 
 /// A punctual light's colour × intensity as edited.
@@ -48,7 +58,9 @@ impl SceneEdits {
             let changed = a.base_color != b.base_color
                 || a.metallic != b.metallic
                 || a.roughness != b.roughness
-                || a.emission != b.emission;
+                || a.emission != b.emission
+                || a.transmission != b.transmission
+                || a.ior != b.ior;
             if changed {
                 edits.objects.push(ObjectEdit {
                     object: i as u32,
@@ -56,6 +68,8 @@ impl SceneEdits {
                     metallic: b.metallic,
                     roughness: b.roughness,
                     emission: b.emission,
+                    transmission: b.transmission,
+                    ior: b.ior,
                 });
             }
         }
@@ -91,7 +105,10 @@ impl SceneEdits {
                 && edit.base_color.min_element() >= 0.0
                 && edit.emission.min_element() >= 0.0
                 && (0.0..=1.0).contains(&edit.metallic)
-                && (0.0..=1.0).contains(&edit.roughness);
+                && (0.0..=1.0).contains(&edit.roughness)
+                && (0.0..=1.0).contains(&edit.transmission)
+                && edit.ior.is_finite()
+                && edit.ior >= 1.0;
             if !valid {
                 return Err(format!(
                     "the edit of object {} has invalid values",
@@ -103,6 +120,8 @@ impl SceneEdits {
             material.metallic = edit.metallic;
             material.roughness = edit.roughness;
             material.emission = edit.emission;
+            material.transmission = edit.transmission;
+            material.ior = edit.ior;
         }
         for edit in &self.lights {
             let Some(light) = scene.lights.get_mut(edit.light as usize) else {

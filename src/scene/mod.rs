@@ -70,8 +70,9 @@ pub struct Object {
     pub triangles: std::ops::Range<u32>,
 }
 
-/// A glTF metallic-roughness material, as authored. [`Material::brdf_model`]
-/// maps it onto the course's three models.
+/// A glTF metallic-roughness material, as authored, with
+/// `KHR_materials_transmission` and `KHR_materials_ior`.
+/// [`Material::brdf_model`] maps it onto the course's four models.
 #[derive(Clone, Debug)]
 pub struct Material {
     pub name: String,
@@ -85,7 +86,17 @@ pub struct Material {
     pub emission_texture: Option<TextureRef>,
     /// Emits and is seen from both faces (glTF `doubleSided`).
     pub double_sided: bool,
+    /// The share of the dielectric part that is glass (glTF
+    /// `transmissionFactor`, in [0, 1]): that share of the material is
+    /// smooth glass, the rest its metallic-roughness model.
+    pub transmission: f32,
+    /// Index of refraction of the inside (glTF `KHR_materials_ior`, ≥ 1);
+    /// the outside is air, 1.
+    pub ior: f32,
 }
+
+/// The index of refraction of glass when a file gives none (glTF's default).
+pub const DEFAULT_IOR: f32 = 1.5;
 
 impl Default for Material {
     fn default() -> Self {
@@ -99,6 +110,8 @@ impl Default for Material {
             emission: Vec3::ZERO,
             emission_texture: None,
             double_sided: false,
+            transmission: 0.0,
+            ior: DEFAULT_IOR,
         }
     }
 }
@@ -126,6 +139,19 @@ impl Material {
         }
     }
 
+    /// Smooth glass of index of refraction `ior`, its refraction tinted by `tint`.
+    pub fn glass(name: &str, tint: Vec3, ior: f32) -> Self {
+        Self {
+            name: name.into(),
+            base_color: tint,
+            metallic: 0.0,
+            roughness: 0.0,
+            transmission: 1.0,
+            ior,
+            ..Self::default()
+        }
+    }
+
     /// A black Lambert surface emitting radiance `radiance` from its front face.
     pub fn emitter(name: &str, radiance: Vec3) -> Self {
         Self {
@@ -139,8 +165,26 @@ impl Material {
         self.emission.max_element() > 0.0
     }
 
-    /// The course's mapping of metallic-roughness onto the three models.
+    /// The weight of glass in the material: the transmission of its
+    /// dielectric part, transmission × (1 − metallic) (glTF: a metal
+    /// transmits nothing).
+    pub fn glass_weight(&self) -> f32 {
+        (self.transmission * (1.0 - self.metallic)).clamp(0.0, 1.0)
+    }
+
+    /// The course's model of the material: glass when it is glass alone,
+    /// else its metallic-roughness model ([`Material::opaque_model`]).
     pub fn brdf_model(&self) -> BrdfModel {
+        if self.glass_weight() >= 1.0 {
+            BrdfModel::Glass
+        } else {
+            self.opaque_model()
+        }
+    }
+
+    /// The course's mapping of metallic-roughness onto its three reflection
+    /// models (the part of the material that is not glass).
+    pub fn opaque_model(&self) -> BrdfModel {
         if self.metallic <= 0.0 && self.roughness >= 1.0 {
             BrdfModel::Lambert
         } else if self.metallic >= 1.0 && self.roughness <= 0.0 {
@@ -153,12 +197,16 @@ impl Material {
     }
 }
 
-/// Which of the course's reflection models a material uses.
+/// Which of the course's models a material uses.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum BrdfModel {
     Lambert,
-    Phong { exponent: f32 },
+    Phong {
+        exponent: f32,
+    },
     Mirror,
+    /// Smooth glass (a dielectric interface).
+    Glass,
 }
 
 /// A `KHR_lights_punctual` light. `intensity` is `color × intensity`: radiant

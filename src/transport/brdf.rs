@@ -1,26 +1,38 @@
-//! The course's three reflection models, in the local shading frame.
+//! The course's materials, in the local shading frame: three reflection
+//! models and glass.
 //!
 //! Directions are unit vectors pointing away from the surface: `wo` towards
 //! the viewer, `wi` towards the light; z is the shading normal, on the side
-//! `wo` arrives from (reflection is two-sided). Only reflection exists:
-//! `wi.z ≤ 0` gives zero.
+//! `wo` arrives from (reflection is two-sided). Only glass transmits: a
+//! sampled `wi.z < 0` is a refraction into the other side; the other models
+//! give zero there.
 //!
 //! | model | f_r(wo, wi) | sampling |
 //! |---|---|---|
 //! | Lambert | ρ / π | cosine hemisphere, pdf cos θ / π |
 //! | Phong (normalised, modified) | kd/π + ks (n+2)/(2π) cosⁿ α | lobe picked ∝ luminance of kd, ks by the first number of the pair, which then places the direction; cosine hemisphere or cosⁿ α around the mirror direction (pdf (n+1)/(2π) cosⁿ α) |
 //! | Mirror | R δ(wi − mirror(wo)) / cos θ | the mirror direction (a Dirac) |
+//! | Glass | F δ(wi − mirror(wo)) / cos θ + (1 − F) T/η² δ(wi − refract(wo)) / cos θ | reflection with probability F (Fresnel), else refraction (two Diracs) |
 //!
 //! α is the angle between `wi` and the mirror direction of `wo`. `eval`
 //! returns f without the cosine; a sample's `weight` is f·cos θ / pdf.
-//! A Dirac has no density: `eval` and `pdf` of a mirror are zero, and its
-//! sample carries `delta = true` with weight R.
+//! A Dirac has no density: `eval` and `pdf` of a mirror or glass are zero,
+//! and their samples carry `delta = true` with weight R (mirror), 1
+//! (glass, reflected: F / F) or T/η² (glass, refracted: (1 − F) T/η² / (1 − F)).
+//!
+//! For glass η = n_far / n_near, the index of refraction on the side a
+//! refracted `wi` leaves into over the one on `wo`'s side (1.5 entering
+//! glass from air, 1/1.5 leaving it). Radiance crossing the interface is
+//! scaled by 1/η² (the solid angle it fills is compressed by η²): a path that
+//! enters and leaves a glass object gets η² · 1/η² = 1, and only T, the
+//! tint (the base colour), remains (`docs/conventions.md`).
 
 use glam::{Vec2, Vec3};
 use std::f32::consts::{FRAC_1_PI, PI};
 
 use crate::geometry::Frame;
 use crate::render::color::luminance;
+use crate::transport::fresnel::fresnel_dielectric;
 use crate::transport::warps::{cosine_hemisphere, cosine_hemisphere_pdf, phong_lobe};
 
 /// A reflection model with its parameters resolved at one surface point.
@@ -32,6 +44,9 @@ pub enum Brdf {
     Phong { kd: Vec3, ks: Vec3, exponent: f32 },
     /// Perfect mirror of reflectance R.
     Mirror { reflectance: Vec3 },
+    /// Smooth glass: Fresnel reflection, and refraction tinted by T, with
+    /// η = n_far / n_near (the module's doc).
+    Glass { tint: Vec3, eta: f32 },
 }
 
 /// A direction drawn from a BRDF.
@@ -41,7 +56,8 @@ pub struct BrdfSample {
     pub wi: Vec3,
     /// f · cos θ / pdf (for a Dirac: the reflectance).
     pub weight: Vec3,
-    /// Solid-angle density of `wi` (for a Dirac: 0, unused).
+    /// Solid-angle density of `wi`; for a Dirac, the probability of the
+    /// lobe drawn (1 for a mirror, F or 1 − F for glass).
     pub pdf: f32,
     pub delta: bool,
 }
@@ -51,10 +67,36 @@ pub fn reflect(wo: Vec3) -> Vec3 {
     Vec3::new(-wo.x, -wo.y, wo.z)
 }
 
+/// The direction refracted from `wo` (`wo.z` > 0) into the other side, where
+/// the index of refraction is η times `wo`'s: Snell's law sin θ_t = sin θ_i / η,
+/// the tangential part scaled by −1/η and the normal part −cos θ_t. `None`
+/// past the critical angle (total internal reflection).
+pub fn refract(wo: Vec3, eta: f32) -> Option<Vec3> {
+    let cos_i = wo.z.clamp(0.0, 1.0);
+    let sin2_t = (1.0 - cos_i * cos_i) / (eta * eta);
+    if sin2_t >= 1.0 {
+        return None;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    Some(Vec3::new(-wo.x / eta, -wo.y / eta, -cos_t))
+}
+
 impl Brdf {
     /// Whether the model is a Dirac (no light sampling possible).
     pub fn is_delta(&self) -> bool {
-        matches!(self, Brdf::Mirror { .. })
+        matches!(self, Brdf::Mirror { .. } | Brdf::Glass { .. })
+    }
+
+    /// The same material seen from its back: glass's η inverted (the ray is
+    /// inside); the reflection models are two-sided and stay as they are.
+    pub fn seen_from_behind(self) -> Brdf {
+        match self {
+            Brdf::Glass { tint, eta } => Brdf::Glass {
+                tint,
+                eta: 1.0 / eta,
+            },
+            other => other,
+        }
     }
 
     /// Whether the model reflects nothing (a black surface).
@@ -63,6 +105,8 @@ impl Brdf {
             Brdf::Lambert { albedo } => albedo.max_element() <= 0.0,
             Brdf::Phong { kd, ks, .. } => kd.max_element() <= 0.0 && ks.max_element() <= 0.0,
             Brdf::Mirror { reflectance } => reflectance.max_element() <= 0.0,
+            // an interface reflects unless the two indices are equal
+            Brdf::Glass { tint, eta } => eta == 1.0 && tint.max_element() <= 0.0,
         }
     }
 
@@ -103,7 +147,7 @@ impl Brdf {
                     + p_spec * ((exponent + 1.0) / (2.0 * PI) * lobe);
                 (f, pdf)
             }
-            Brdf::Mirror { .. } => (Vec3::ZERO, 0.0),
+            Brdf::Mirror { .. } | Brdf::Glass { .. } => (Vec3::ZERO, 0.0),
         }
     }
 
@@ -117,18 +161,20 @@ impl Brdf {
     /// with `u.x` and stretches the part of `u.x` that picked it back over
     /// [0, 1) (`pick_lobe`), so a stratified pair stays stratified over the
     /// two lobes together instead of being split between them by an
-    /// unrelated number. `None` when the drawn direction is below the
-    /// surface or nothing is reflected.
+    /// unrelated number. Glass reflects when `u.x` < F and refracts
+    /// otherwise. `None` when the drawn direction is below the surface or
+    /// nothing is reflected.
     pub fn sample(&self, wo: Vec3, u: Vec2) -> Option<BrdfSample> {
         if wo.z <= 0.0 || self.is_black() {
             return None;
         }
         let wi = match *self {
+            Brdf::Glass { tint, eta } => return Some(sample_glass(tint, eta, wo, u.x)),
             Brdf::Mirror { reflectance } => {
                 return Some(BrdfSample {
                     wi: reflect(wo),
                     weight: reflectance,
-                    pdf: 0.0,
+                    pdf: 1.0,
                     delta: true,
                 });
             }
@@ -155,6 +201,32 @@ impl Brdf {
     }
 }
 
+/// Smooth glass: the mirror direction with probability F, weight F / F = 1;
+/// otherwise the refracted one, weight (1 − F) T/η² / (1 − F) = T/η².
+/// Past the critical angle F = 1: always reflected.
+fn sample_glass(tint: Vec3, eta: f32, wo: Vec3, u: f32) -> BrdfSample {
+    let reflectance = fresnel_dielectric(wo.z, eta);
+    let refracted = if u < reflectance {
+        None
+    } else {
+        refract(wo, eta)
+    };
+    match refracted {
+        Some(wi) => BrdfSample {
+            wi,
+            weight: tint / (eta * eta),
+            pdf: 1.0 - reflectance,
+            delta: true,
+        },
+        None => BrdfSample {
+            wi: reflect(wo),
+            weight: Vec3::ONE,
+            pdf: reflectance,
+            delta: true,
+        },
+    }
+}
+
 /// Whether `u.x` picks the lobe of probability `p` (the interval [0, p)),
 /// and the pair with `u.x` mapped back onto [0, 1) from the interval that
 /// picked.
@@ -172,6 +244,7 @@ fn pick_lobe(p: f32, u: Vec2) -> (bool, Vec2) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::transport::fresnel::fresnel_dielectric;
     use crate::transport::sampler::SampleStream;
 
     /// Monte Carlo estimate of the directional albedo ∫ f cos dω by BRDF sampling.
@@ -388,6 +461,95 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Glass's two Dirac lobes, counted as such: every sample is exactly
+    /// the mirror or the refracted direction, with weight 1 or T/η², and
+    /// the counts of each follow F and 1 − F (χ² with one degree of
+    /// freedom below 15.1, a chance of 10⁻⁴), from air and from inside,
+    /// where past the critical angle every sample is reflected.
+    #[test]
+    fn glass_draws_its_two_lobes_with_the_fresnel_probabilities() {
+        let n = 20_000u32;
+        let tint = Vec3::new(0.9, 0.8, 0.7);
+        for eta in [1.5f32, 1.0 / 1.5] {
+            for degrees in [0.0f32, 30.0, 41.0, 60.0, 85.0] {
+                let theta = degrees.to_radians();
+                let wo = Vec3::new(theta.sin() * 0.6, theta.sin() * 0.8, theta.cos());
+                let glass = Brdf::Glass { tint, eta };
+                let reflectance = fresnel_dielectric(wo.z, eta);
+                let refracted = refract(wo, eta);
+                let mut reflected = 0u32;
+                for i in 0..n {
+                    let stream = SampleStream::new(7, 0, i as u64);
+                    let sample = glass.sample(wo, stream.uniform2(5)).unwrap();
+                    assert!(sample.delta);
+                    if sample.wi == reflect(wo) {
+                        reflected += 1;
+                        assert_eq!((sample.weight, sample.pdf), (Vec3::ONE, reflectance));
+                    } else {
+                        assert_eq!(Some(sample.wi), refracted, "η {eta}, {degrees}°");
+                        assert_eq!(sample.weight, tint / (eta * eta));
+                        assert_eq!(sample.pdf, 1.0 - reflectance);
+                    }
+                }
+                if refracted.is_none() {
+                    assert_eq!(
+                        reflected, n,
+                        "total internal reflection, η {eta}, {degrees}°"
+                    );
+                    continue;
+                }
+                let expected = [
+                    reflectance as f64 * n as f64,
+                    (1.0 - reflectance as f64) * n as f64,
+                ];
+                let observed = [reflected as f64, (n - reflected) as f64];
+                let chi2: f64 = observed
+                    .iter()
+                    .zip(expected)
+                    .map(|(o, e)| (o - e).powi(2) / e)
+                    .sum();
+                assert!(
+                    chi2 < 15.1,
+                    "η {eta}, {degrees}°: χ² = {chi2:.1}, {reflected} of {n} reflected, F = {reflectance}"
+                );
+            }
+        }
+    }
+
+    /// Snell's law: the refracted direction is a unit vector on the other
+    /// side, in the plane of `wo` and the normal, with η sin θ_t = sin θ_i;
+    /// and refracting it back from the other side gives `wo` again.
+    #[test]
+    fn refraction_follows_snells_law_both_ways() {
+        for eta in [1.33f32, 1.5, 2.4, 1.0 / 1.5] {
+            for degrees in [0.0f32, 10.0, 35.0, 41.0] {
+                let theta = degrees.to_radians();
+                let wo = Vec3::new(theta.sin() * 0.28, -theta.sin() * 0.96, theta.cos());
+                let wi = refract(wo, eta).unwrap();
+                assert!((wi.length() - 1.0).abs() < 1e-6 && wi.z < 0.0);
+                let (sin_i, sin_t) = (wo.truncate().length(), wi.truncate().length());
+                assert!((eta * sin_t - sin_i).abs() < 1e-6, "η {eta}, {degrees}°");
+                assert!(
+                    wo.truncate().perp_dot(wi.truncate()).abs() < 1e-6,
+                    "coplanar"
+                );
+                assert!(wo.truncate().dot(wi.truncate()) <= 0.0, "across the normal");
+                // from the other side the frame's z is flipped and η inverted
+                let back = refract(Vec3::new(wi.x, wi.y, -wi.z), 1.0 / eta).unwrap();
+                let back = Vec3::new(back.x, back.y, -back.z);
+                assert!(
+                    (back - wo).length() < 1e-5,
+                    "η {eta}, {degrees}°: {back} vs {wo}"
+                );
+            }
+        }
+        assert_eq!(
+            refract(Vec3::new(0.8, 0.0, 0.6), 1.0 / 1.5),
+            None,
+            "past the critical angle"
+        );
     }
 
     #[test]

@@ -22,8 +22,9 @@
 //!
 //! h is the balance or power heuristic, n the BRDF samples per light sample
 //! (the M continuations of a split first hit double as gathered directions:
-//! Veach's multi-sample MIS). Dirac lights keep w_light = 1; a mirror has no
-//! light sample and its continuation's emission hit keeps w = 1.
+//! Veach's multi-sample MIS). Dirac lights keep w_light = 1; a mirror or
+//! glass has no light sample and its continuation's emission hit keeps
+//! w = 1. A refraction counts as a reflection: it raises the term by one.
 //!
 //! The continuation is drawn uniformly, by cosine or by the BRDF
 //! (`indirect_sampling`); at the first hit the path splits into M
@@ -44,7 +45,7 @@ use crate::transport::brdf::{Brdf, BrdfSample};
 use crate::transport::counts::RayCounts;
 use crate::transport::path_log::{PathLog, SegmentKind};
 use crate::transport::sampler::{SampleStream, dim};
-use crate::transport::surface::SurfacePoint;
+use crate::transport::surface::{SurfacePoint, leaves_on_its_side};
 use crate::transport::tally::Tally;
 use crate::transport::warps::{
     UNIFORM_HEMISPHERE_PDF, balance_heuristic, cosine_hemisphere, cosine_hemisphere_pdf,
@@ -385,7 +386,7 @@ impl<'a> Walk<'a> {
         if reflections >= self.last_reflection {
             return None;
         }
-        let brdf = point.brdf(&self.context.scene, &self.context.settings);
+        let brdf = point.brdf(&self.context.scene, &self.context.settings, wo);
         if brdf.is_black() {
             return None;
         }
@@ -639,8 +640,8 @@ impl<'a> Walk<'a> {
             base + dim::BRDF_DIRECTION,
         )?;
         let wi = vertex.frame.to_world(sample.wi).normalize();
-        if wi.dot(vertex.ng) <= 0.0 {
-            return None; // below the geometric surface: shading-normal artefact
+        if !leaves_on_its_side(wi, vertex.ng, sample.wi) {
+            return None; // across the geometric surface: shading-normal artefact
         }
         let weight = if sample.delta {
             EmissionWeight::One
@@ -738,8 +739,8 @@ fn gather_directions(strategy: LightSampling) -> Option<Directions> {
 
 /// A direction (local frame) drawn from `directions` at a vertex of `brdf`
 /// seen from `wo`, with f cos θ / pdf and its pdf; `None` if it reflects
-/// nothing. The numbers come from `stream`'s direction pair, read only if
-/// the routine uses it (a mirror does not).
+/// nothing. The numbers come from `stream`'s direction pair (glass picks
+/// its lobe with them; a mirror ignores them).
 #[inline(always)]
 fn draw_direction(
     brdf: &Brdf,
@@ -749,14 +750,7 @@ fn draw_direction(
     direction_dimension: u32,
 ) -> Option<BrdfSample> {
     let (wi, pdf) = match directions {
-        Directions::Brdf => {
-            let u = if brdf.is_delta() {
-                glam::Vec2::ZERO
-            } else {
-                stream.uniform2(direction_dimension)
-            };
-            return brdf.sample(wo, u);
-        }
+        Directions::Brdf => return brdf.sample(wo, stream.uniform2(direction_dimension)),
         Directions::Uniform => (
             uniform_hemisphere(stream.uniform2(direction_dimension)),
             UNIFORM_HEMISPHERE_PDF,

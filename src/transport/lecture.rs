@@ -15,7 +15,8 @@
 //! Each integral is estimated by Monte Carlo with one sample: a point drawn
 //! on a source for L1, a direction drawn by the BRDF for L2 and beyond. The
 //! directions of L2 that hit a source bring nothing: that light was counted
-//! in L1. This is the integrator to read against the course, and the oracle
+//! in L1. A refraction through glass is an interaction like a reflection:
+//! a light seen through a glass block is L2 (two refractions). This is the integrator to read against the course, and the oracle
 //! the fast integrator (`transport/fast.rs`) is tested against; it has no
 //! multiple importance sampling, splitting, counters or logs.
 
@@ -29,7 +30,7 @@ use crate::transport::TermRadiance;
 use crate::transport::brdf::Brdf;
 use crate::transport::sampler::{SampleStream, dim};
 use crate::transport::sources::SourceBudget;
-use crate::transport::surface::SurfacePoint;
+use crate::transport::surface::{SurfacePoint, leaves_on_its_side};
 
 /// The reflections after which Russian roulette may end a path: it decides
 /// from the fourth reflection on, inside L3+.
@@ -149,11 +150,11 @@ impl Surface {
             return None;
         };
         let point = SurfacePoint::new(&context.scene, triangle, b);
-        let brdf = point.brdf(&context.scene, &context.settings);
+        let wo = -ray.direction;
+        let brdf = point.brdf(&context.scene, &context.settings, wo);
         if brdf.is_black() {
             return None;
         }
-        let wo = -ray.direction;
         let (frame, ng) = point.frame_towards(wo);
         Some(Surface {
             point,
@@ -184,8 +185,8 @@ fn emission(context: &RenderContext, hit: &Hit, ray: &Ray) -> Vec3 {
 /// L_direct(x, ωo) = Σ_s ∫_Ωs L_e f_r cos θ dω at `x`, the point after
 /// `vertex` earlier reflections.
 ///
-/// A mirror cannot sample a source (its f_r is a Dirac): it reflects the
-/// light it sees in its mirror direction. Elsewhere the sum over the sources
+/// A mirror or glass cannot sample a source (its f_r is a Dirac): it
+/// passes on the light it sees in its one direction. Elsewhere the sum over the sources
 /// is estimated by one source s drawn with probability P(s), proportional to
 /// its power: E[x_s / P(s)] = Σ_s x_s, for any number of sources; or, with
 /// a quality for each source, by each source's own samples.
@@ -195,10 +196,10 @@ fn direct_lighting(
     stream: &SampleStream,
     vertex: u32,
 ) -> Vec3 {
-    if x.brdf.is_delta() {
-        return light_seen_in_mirror(context, x);
-    }
     let base = dim::vertex_base(vertex);
+    if x.brdf.is_delta() {
+        return light_seen_through_dirac(context, x, stream.uniform2(base + dim::LIGHT_POSITION));
+    }
     if let Some(budget) = context.lights.budget() {
         return quality_for_each_source(context, x, stream, base, budget);
     }
@@ -268,24 +269,27 @@ fn light_from_source(context: &RenderContext, x: &Surface, source: usize, u: Vec
     light.radiance * f * cos_theta / light.pdf
 }
 
-/// The direct lighting of a mirror: R · L_e(q, −ω) for the point q it shows.
-fn light_seen_in_mirror(context: &RenderContext, x: &Surface) -> Vec3 {
-    let Some(reflection) = x.brdf.sample(x.wo_local, Vec2::ZERO) else {
+/// The direct lighting of a mirror or glass: weight · L_e(q, −ω) for the
+/// point q seen in the direction ω of its Dirac; glass picks reflection or
+/// refraction with `u` (weight R for a mirror, 1 or T/η² for glass).
+fn light_seen_through_dirac(context: &RenderContext, x: &Surface, u: Vec2) -> Vec3 {
+    let Some(sample) = x.brdf.sample(x.wo_local, u) else {
         return Vec3::ZERO;
     };
-    let wi = x.frame.to_world(reflection.wi).normalize();
-    if wi.dot(x.ng) <= 0.0 {
-        return Vec3::ZERO; // below the geometric surface
+    let wi = x.frame.to_world(sample.wi).normalize();
+    if !leaves_on_its_side(wi, x.ng, sample.wi) {
+        return Vec3::ZERO; // across the geometric surface
     }
     let ray = x.point.spawn_ray(wi);
     match context.accel.closest_hit(&ray) {
-        Some(hit) => reflection.weight * emission(context, &hit, &ray),
+        Some(hit) => sample.weight * emission(context, &hit, &ray),
         None => Vec3::ZERO,
     }
 }
 
 /// One step of the path: a direction ω drawn at `x` by its BRDF, the point
-/// it sees, and the step's weight f_r cos θ / pdf (for a mirror, R).
+/// it sees, and the step's weight f_r cos θ / pdf (for a mirror, R; for
+/// glass, 1 reflected or T/η² refracted).
 /// `None` if ω is below the surface, leaves the scene or meets a surface
 /// that reflects nothing.
 fn bounce(
@@ -297,8 +301,8 @@ fn bounce(
     let u = stream.uniform2(dim::vertex_base(vertex) + dim::BRDF_DIRECTION);
     let sample = x.brdf.sample(x.wo_local, u)?;
     let wi = x.frame.to_world(sample.wi).normalize();
-    if wi.dot(x.ng) <= 0.0 {
-        return None; // below the geometric surface: a shading-normal artefact
+    if !leaves_on_its_side(wi, x.ng, sample.wi) {
+        return None; // across the geometric surface: a shading-normal artefact
     }
     let ray = x.point.spawn_ray(wi);
     let hit = context.accel.closest_hit(&ray)?;

@@ -3,7 +3,8 @@
 //!
 //! Emission is one-sided (the front face, by winding) unless the material is
 //! double-sided; reflection is two-sided: the shading frame is flipped to the
-//! side the ray arrives from.
+//! side the ray arrives from. Glass is not: its front face is the outside,
+//! so a ray arriving on the back is inside, and sees η inverted.
 
 use glam::{Vec2, Vec3};
 
@@ -11,6 +12,20 @@ use crate::geometry::{Frame, Ray, interpolate_point, offset_ray_origin};
 use crate::render::settings::{BrdfOverride, RenderSettings};
 use crate::scene::{BrdfModel, Material, Scene, TextureRef};
 use crate::transport::brdf::Brdf;
+use crate::transport::sampler::mix64;
+
+/// The model of `material` at one point: glass always at glass weight 1,
+/// never at 0, else when `pick()` < the weight; otherwise its
+/// metallic-roughness model.
+#[inline]
+fn authored_model(material: &Material, pick: impl FnOnce() -> f32) -> BrdfModel {
+    let weight = material.glass_weight();
+    if weight >= 1.0 || (weight > 0.0 && pick() < weight) {
+        BrdfModel::Glass
+    } else {
+        material.opaque_model()
+    }
+}
 
 /// Unit normal of the front face of triangle (p0, p1, p2), counter-clockwise
 /// seen from the front; +Z for a degenerate triangle.
@@ -108,17 +123,57 @@ impl SurfacePoint {
         material.emission * self.texture(scene, material.emission_texture)
     }
 
-    /// The reflection model here, after the global override of `settings`.
-    pub fn brdf(&self, scene: &Scene, settings: &RenderSettings) -> Brdf {
+    /// The material's model here, seen from unit `wo`, after the global
+    /// override of `settings`. A material partly glass is glass or its other
+    /// model, picked by a number hashed from the point and `wo` (pbrt-v4's
+    /// `MixMaterial`): a random choice with the glass weight as its
+    /// probability, which needs no dimension of the sample.
+    pub fn brdf(&self, scene: &Scene, settings: &RenderSettings, wo: Vec3) -> Brdf {
         let material = &scene.materials[self.material as usize];
         let base = material.base_color * self.texture(scene, material.base_color_texture);
-        resolve_brdf(material, base, settings)
+        let brdf = resolve_brdf(material, base, settings, || mix_number(self.p, wo));
+        if self.ng.dot(wo) >= 0.0 {
+            brdf
+        } else {
+            brdf.seen_from_behind()
+        }
     }
 }
 
-/// The course's mapping of a material (with base colour `base` already textured)
-/// onto Lambert, Phong or mirror, honouring the global override.
-pub fn resolve_brdf(material: &Material, base: Vec3, settings: &RenderSettings) -> Brdf {
+/// Whether world direction `wi`, drawn as `wi_local` in a shading frame
+/// whose z is on `ng`'s side, leaves on the same side of the geometric
+/// surface: a reflected direction above it, a refracted one below. A shading
+/// normal can tilt a direction across; such a direction is dropped.
+#[inline(always)]
+pub fn leaves_on_its_side(wi: Vec3, ng: Vec3, wi_local: Vec3) -> bool {
+    let across = wi.dot(ng);
+    if wi_local.z > 0.0 {
+        across > 0.0
+    } else {
+        across < 0.0
+    }
+}
+
+/// A number in [0, 1) hashed from a point and a direction.
+fn mix_number(p: Vec3, wo: Vec3) -> f32 {
+    let mut hash = 0u64;
+    for value in [p.x, p.y, p.z, wo.x, wo.y, wo.z] {
+        hash = mix64(hash ^ u64::from(value.to_bits()));
+    }
+    (hash >> 40) as f32 / (1u64 << 24) as f32
+}
+
+/// The course's mapping of a material (with base colour `base` already
+/// textured) onto Lambert, Phong, mirror or glass, honouring the global
+/// override, seen from the front. A material partly glass is glass when
+/// `pick()` (a number in [0, 1), read only then) falls below its glass
+/// weight.
+pub fn resolve_brdf(
+    material: &Material,
+    base: Vec3,
+    settings: &RenderSettings,
+    pick: impl FnOnce() -> f32,
+) -> Brdf {
     let override_phong = || {
         let ks = settings.phong_specular;
         Brdf::Phong {
@@ -131,8 +186,16 @@ pub fn resolve_brdf(material: &Material, base: Vec3, settings: &RenderSettings) 
         BrdfOverride::Lambert => Brdf::Lambert { albedo: base },
         BrdfOverride::Mirror => Brdf::Mirror { reflectance: base },
         BrdfOverride::Phong => override_phong(),
-        BrdfOverride::Authored => match material.brdf_model() {
+        BrdfOverride::Glass => Brdf::Glass {
+            tint: base,
+            eta: settings.glass_ior,
+        },
+        BrdfOverride::Authored => match authored_model(material, pick) {
             BrdfModel::Lambert => Brdf::Lambert { albedo: base },
+            BrdfModel::Glass => Brdf::Glass {
+                tint: base,
+                eta: material.ior,
+            },
             BrdfModel::Mirror => Brdf::Mirror { reflectance: base },
             BrdfModel::Phong { exponent } => {
                 let metallic = material.metallic.clamp(0.0, 1.0);

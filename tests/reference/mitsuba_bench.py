@@ -12,7 +12,7 @@ with lumiere's own definitions (src/metrics.rs):
     python tests/reference/mitsuba_bench.py SCENE.gltf --reference REF.exr \
         --width W --height H --max-depth 3 --spp 1,2,4,8,... --out OUT.csv \
         [--until-relmse 1e-3 --spp-limit 1024] [--variant llvm_ad_rgb] [--threads N] \
-        [--brdf lambert|mirror|phong] [--sphere-lights RADIUS] [--point-emitters]
+        [--brdf lambert|mirror|phong|glass] [--ior ETA] [--sphere-lights RADIUS] [--point-emitters]
 
 (`--brdf`, `--sphere-lights` and `--point-emitters` are lumiere's `--brdf`,
 `--lights area` and `--lights point`,

@@ -8,7 +8,7 @@ float EXR:
     python tests/reference/mitsuba_render.py SCENE.gltf --max-depth 3 \
         --spp 4096 --width 128 --height 128 --out OUT.exr \
         [--variant llvm_ad_rgb|scalar_rgb] [--png PREVIEW.png] \
-        [--brdf lambert|mirror|phong] [--sphere-lights RADIUS] [--point-emitters]
+        [--brdf lambert|mirror|phong|glass] [--ior ETA] [--sphere-lights RADIUS] [--point-emitters]
 
 `--max-depth` counts path segments, as Mitsuba does: 1 = emitters seen
 directly (L0), 2 = L0 + direct lighting (L1), 3 = L0 + L1 + one indirect
@@ -25,6 +25,11 @@ Supported glTF subset (anything else is rejected, not approximated):
   roughness 0 -> perfect mirror (`twosided` `conductor`, `material:
   none`, specular_reflectance = baseColor); anything else -> lumiere's
   Phong (`lumiere_phong`, registered below);
+* KHR_materials_transmission and KHR_materials_ior: a material whose glass
+  weight transmissionFactor x (1 - metallic) is 1 -> `dielectric`
+  (int_ior = ior, default 1.5, ext_ior = 1, specular_transmittance =
+  baseColor); a weight w between 0 and 1 -> `blendbsdf` of weight w between
+  the material's other model and that `dielectric`, as lumiere mixes them;
 * base colour and emissive textures (PNG or JPEG) at TEXCOORD_0 or
   TEXCOORD_1, one set each (`lumiere_texture`, registered below, reads
   them as lumiere does); KHR_texture_transform is ignored, as lumiere
@@ -40,8 +45,9 @@ Supported glTF subset (anything else is rejected, not approximated):
   down its -Z; without one, the camera lumiere framed (`--camera`).
 
 lumiere's scene overrides are mirrored, so that both render the
-same scene: `--brdf lambert|mirror|phong` (lumiere's `--brdf`: every
-material Lambert, a mirror, or Phong, of baseColor; emission unchanged) and
+same scene: `--brdf lambert|mirror|phong|glass` (lumiere's `--brdf`: every
+material Lambert, a mirror, Phong, or glass of index `--ior`, of
+baseColor; emission unchanged) and
 `--sphere-lights RADIUS` (lumiere's `--lights area`: every point light
 becomes a sphere of that radius, a pure emitter of uniform radiance
 I / (pi r^2), the same power 4 pi I). `--point-emitters` is lumiere's
@@ -500,9 +506,11 @@ def cosine_points(positions, faces, radiance, two_sided):
 
 def material_info(g, index, brdf=None):
     """Returns (kind, rgb, emission rgb or None, double_sided, its textures);
-    kind is "lambert", "mirror" or ("phong", parameters of `lumiere_phong`).
-    `brdf` ("lambert", "mirror", or ("phong", exponent, specular), lumiere's
-    --brdf phong) replaces every material's model."""
+    kind is "lambert", "mirror", ("phong", parameters of `lumiere_phong`),
+    ("glass", ior) or ("blend", glass weight, the other kind, ior).
+    `brdf` ("lambert", "mirror", ("phong", exponent, specular), lumiere's
+    --brdf phong, or ("glass", ior), lumiere's --brdf glass) replaces every
+    material's model."""
     if index is None:
         mat = {}  # glTF default material: white, metallic 1, roughness 1
     else:
@@ -517,9 +525,18 @@ def material_info(g, index, brdf=None):
     base = [float(c) for c in pbr.get("baseColorFactor", [1, 1, 1, 1])[:3]]
     metallic = float(pbr.get("metallicFactor", 1.0))
     roughness = float(pbr.get("roughnessFactor", 1.0))
-    if isinstance(brdf, tuple):
+    extensions = mat.get("extensions", {})
+    transmission = float(extensions.get("KHR_materials_transmission", {}).get("transmissionFactor", 0.0))
+    # lumiere raises an index below 1 to 1 (it warns)
+    ior = max(float(extensions.get("KHR_materials_ior", {}).get("ior", 1.5)), 1.0)
+    glass = min(max(transmission, 0.0), 1.0) * (1.0 - min(max(metallic, 0.0), 1.0))
+    if isinstance(brdf, tuple) and brdf[0] == "glass":
+        kind = brdf
+    elif isinstance(brdf, tuple):
         _, exponent, specular = brdf
         kind = ("phong", {"exponent": exponent, "specular": specular})
+    elif brdf is None and glass >= 1.0:
+        kind = ("glass", ior)
     elif brdf is not None:
         kind = brdf
     elif metallic <= 0.0 and roughness >= 1.0:
@@ -530,6 +547,8 @@ def material_info(g, index, brdf=None):
         # lumiere's mapping of every other material (COURSE.md)
         kind = ("phong", {"exponent": phong_exponent(roughness),
                           "metallic": min(max(metallic, 0.0), 1.0)})
+    if brdf is None and 0.0 < glass < 1.0:
+        kind = ("blend", glass, kind, ior)
     strength = float(mat.get("extensions", {}).get("KHR_materials_emissive_strength", {})
                      .get("emissiveStrength", 1.0))
     emission = [float(c) * strength for c in mat.get("emissiveFactor", [0, 0, 0])]
@@ -594,6 +613,15 @@ def texture_bitmap(mi, g, texture, factor):
 
 def bsdf_dict(kind, rgb, texture=None):
     color = {"type": "rgb", "value": rgb} if texture is None else texture
+    if isinstance(kind, tuple) and kind[0] == "glass":
+        # reflection untinted, refraction tinted by the base colour; the
+        # front face (the normal's side) is the outside, of index 1
+        return {"type": "dielectric", "int_ior": float(kind[1]), "ext_ior": 1.0,
+                "specular_transmittance": color}
+    if isinstance(kind, tuple) and kind[0] == "blend":
+        _, weight, other, ior = kind
+        return {"type": "blendbsdf", "weight": float(weight),
+                "bsdf_0": bsdf_dict(other, rgb, texture), "bsdf_1": bsdf_dict(("glass", ior), rgb, texture)}
     if isinstance(kind, tuple):
         return dict(kind[1], type="lumiere_phong", base=color)  # two-sided itself
     if kind == "lambert":
@@ -897,13 +925,17 @@ def brdf_override(args):
     """The `brdf` argument of `convert` from the parsed override arguments."""
     if args.brdf == "phong":
         return ("phong", args.phong_exponent, args.phong_specular)
+    if args.brdf == "glass":
+        return ("glass", args.ior)
     return args.brdf
 
 
 def add_override_arguments(ap):
     """lumiere's scene overrides that Mitsuba can render too."""
-    ap.add_argument("--brdf", choices=["lambert", "mirror", "phong"], default=None,
+    ap.add_argument("--brdf", choices=["lambert", "mirror", "phong", "glass"], default=None,
                     help="every material's model, as lumiere's --brdf (default: as authored)")
+    ap.add_argument("--ior", type=float, default=1.5,
+                    help="with --brdf glass: the index of refraction, as lumiere's --ior")
     ap.add_argument("--phong-exponent", type=float, default=32.0,
                     help="with --brdf phong: the exponent n, as lumiere's --phong-exponent")
     ap.add_argument("--phong-specular", type=float, default=0.25,

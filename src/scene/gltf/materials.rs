@@ -6,7 +6,7 @@ use glam::Vec3;
 
 use super::build::SceneBuilder;
 use super::{Loaded, label};
-use crate::scene::{Material, TextureRef};
+use crate::scene::{DEFAULT_IOR, Material, TextureRef};
 
 /// `emissiveFactor × KHR_materials_emissive_strength`, a radiance.
 fn emission_radiance(material: &gltf::Material) -> Loaded<Vec3> {
@@ -69,7 +69,21 @@ impl<'f> SceneBuilder<'f> {
             Some(info) => Some(self.texture_ref(&info, &material_label, "emissiveTexture")?),
             None => None,
         };
+        let transmission = match material.transmission() {
+            Some(t) => self.unit_factor(
+                t.transmission_factor(),
+                "transmissionFactor",
+                &material_label,
+            )?,
+            None => 0.0,
+        };
+        let ior = self.index_of_refraction(material, &material_label)?;
         self.warn_ignored_material_parts(material, &material_label, emission);
+        if transmission > 0.0 && roughness > 0.0 {
+            self.warn(format!(
+                "{material_label}: rough transmission (roughnessFactor {roughness}) is rendered as smooth glass"
+            ));
+        }
         Ok(Material {
             name: material
                 .name()
@@ -81,7 +95,32 @@ impl<'f> SceneBuilder<'f> {
             emission,
             emission_texture,
             double_sided: material.double_sided(),
+            transmission,
+            ior,
         })
+    }
+
+    /// `KHR_materials_ior`'s index of refraction (1.5 without it); refused
+    /// if not finite, raised to 1 with a warning below it (glTF's 0, an
+    /// index of refraction for metals, among them).
+    fn index_of_refraction(
+        &mut self,
+        material: &gltf::Material<'f>,
+        material_label: &str,
+    ) -> Loaded<f32> {
+        let Some(ior) = material.ior() else {
+            return Ok(DEFAULT_IOR);
+        };
+        if !ior.is_finite() {
+            return Err(format!("{material_label}: ior {ior} is not finite"));
+        }
+        if ior < 1.0 {
+            self.warn(format!(
+                "{material_label}: ior {ior} raised to 1 (an index of refraction is at least 1)"
+            ));
+            return Ok(1.0);
+        }
+        Ok(ior)
     }
 
     /// A factor clamped to [0, 1], with a warning if it was outside; refused if not finite.
@@ -111,6 +150,13 @@ impl<'f> SceneBuilder<'f> {
         {
             self.warn(format!(
                 "{material_label}: metallicRoughnessTexture ignored; the metallic and roughness factors are used"
+            ));
+        }
+        if let Some(transmission) = material.transmission()
+            && transmission.transmission_texture().is_some()
+        {
+            self.warn(format!(
+                "{material_label}: transmissionTexture ignored; the transmission factor is used"
             ));
         }
         if material.normal_texture().is_some() {

@@ -8,18 +8,22 @@
 //!   included; attributes `POSITION`, `NORMAL`, `TEXCOORD_0` and `TEXCOORD_1`;
 //! * metallic-roughness materials: base colour factor and texture, metallic
 //!   and roughness factors, emissive factor × `KHR_materials_emissive_strength`,
-//!   emissive texture, `doubleSided`;
+//!   emissive texture, `doubleSided`; `KHR_materials_transmission`'s factor
+//!   and `KHR_materials_ior` (glass: every transmissive material is the
+//!   boundary of a solid, as with `KHR_materials_volume`, never a thin wall);
 //! * PNG and JPEG textures (embedded, in a buffer view or in a file beside the
 //!   scene), decoded once to linear RGB, with their sampler's wrap modes;
 //! * `KHR_lights_punctual` point, spot and directional lights;
 //! * perspective and orthographic cameras, in scene-walk order.
 //!
 //! Skipped with a warning in [`Scene::warnings`]: points and lines,
-//! `metallicRoughnessTexture`, normal maps, alpha modes, `KHR_texture_transform`,
+//! `metallicRoughnessTexture`, `transmissionTexture`, normal maps, alpha
+//! modes, `KHR_texture_transform`,
 //! skins, morph targets, animations and any other extension the file uses.
 //! Occlusion maps and the alpha of colours are ignored silently. A file that
 //! *requires* an extension other than `KHR_lights_punctual`,
-//! `KHR_materials_emissive_strength` or `KHR_texture_transform` is refused.
+//! `KHR_materials_emissive_strength`, `KHR_materials_transmission`,
+//! `KHR_materials_ior` or `KHR_texture_transform` is refused.
 //!
 //! Units, as in the course: metres; angles in radians; linear RGB per
 //! channel. Emissive factor × strength is radiance (W·m⁻²·sr⁻¹). A light's

@@ -12,14 +12,21 @@ use percent_encoding::percent_decode_str;
 use super::Loaded;
 
 /// Extensions a file may list in `extensionsRequired`.
-const ACCEPTED_REQUIRED_EXTENSIONS: [&str; 3] = [
+const ACCEPTED_REQUIRED_EXTENSIONS: [&str; 5] = [
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
+    "KHR_materials_transmission",
+    "KHR_materials_ior",
     "KHR_texture_transform",
 ];
 
 /// Extensions that are read (every other one is ignored with a warning).
-const READ_EXTENSIONS: [&str; 2] = ["KHR_lights_punctual", "KHR_materials_emissive_strength"];
+const READ_EXTENSIONS: [&str; 4] = [
+    "KHR_lights_punctual",
+    "KHR_materials_emissive_strength",
+    "KHR_materials_transmission",
+    "KHR_materials_ior",
+];
 
 pub(super) fn parse_json(json: &[u8]) -> Loaded<gltf::json::Root> {
     // tolerate a UTF-8 byte order mark and NUL padding, which some writers emit

@@ -79,6 +79,12 @@ pub fn scene_overrides(scene: &Scene, settings: &RenderSettings) -> Vec<String> 
         BrdfOverride::Lambert | BrdfOverride::Mirror => {
             arguments.extend(["--brdf".to_string(), settings.brdf.label().to_string()])
         }
+        BrdfOverride::Glass => arguments.extend([
+            "--brdf".to_string(),
+            "glass".to_string(),
+            "--ior".to_string(),
+            settings.glass_ior.to_string(),
+        ]),
         BrdfOverride::Phong => arguments.extend([
             "--brdf".to_string(),
             "phong".to_string(),
@@ -118,14 +124,14 @@ pub fn camera_arguments(scene: &Scene) -> Result<Vec<String>, String> {
     Ok(vec!["--camera".into(), values.join(",")])
 }
 
-/// The scene as a glTF file the peer can read: the file itself, or the
-/// built-in Cornell box written into `folder`.
+/// The scene as a glTF file the peer can read: the file itself, or a
+/// built-in scene written into `folder`.
 fn scene_file(scene: &str, folder: &Path) -> Result<PathBuf, BenchError> {
-    if scene != "cornell" {
+    let Some(builtin) = builtin::SCENES.iter().find(|s| s.name == scene) else {
         return Ok(PathBuf::from(scene));
-    }
-    let path = folder.join("cornell-box.gltf");
-    std::fs::write(&path, builtin::CORNELL_GLTF)
+    };
+    let path = folder.join(format!("{}.gltf", builtin.name));
+    std::fs::write(&path, builtin.gltf())
         .map_err(|e| BenchError::file(&path, format!("cannot write: {e}")))?;
     Ok(path)
 }
