@@ -207,9 +207,9 @@ fn a_recorded_path_is_the_probed_sample_and_starts_at_its_pixel() {
                     RayRole::ShadowLit { term } | RayRole::ShadowBlocked { term } => {
                         assert_eq!(term, Term::L2)
                     }
-                    RayRole::Bounce { term } => assert_eq!(term, Term::L2),
+                    RayRole::Bounce { term, .. } => assert_eq!(term, Term::L2),
                     // L3+ is off: the second continuation only looks for a light
-                    RayRole::LastBounce { term } => assert_eq!(term, Term::L2),
+                    RayRole::LastBounce { term, .. } => assert_eq!(term, Term::L2),
                     RayRole::GatherLit { .. } | RayRole::GatherMissed { .. } => {
                         panic!("mis with brdf indirect sampling reuses the bounce")
                     }
@@ -244,4 +244,59 @@ fn a_camera_ray_that_leaves_the_scene_is_a_point_and_nothing_else() {
     assert!((lines[0].to - Vec2::new(0.5, 0.5)).length() < 0.75);
     let roles_of_l1 = TermSet::only(Term::L1);
     assert_eq!(path_lines(&log, &context.camera, roles_of_l1).len(), 1);
+}
+
+/// Through the glass block of `cornell-glass` a path refracts: the path
+/// view marks every continuation that crossed the glass as a refraction
+/// (outlined in white, "refraction" in the list), and only those.
+#[test]
+fn refractions_through_glass_are_marked_in_the_path_view() {
+    use lumiere::geometry::accel::Hit;
+    use lumiere::transport::counts::RayCounts;
+    use lumiere::transport::path_log::PathLog;
+    use lumiere::transport::sampler::SampleStream;
+    let settings = RenderSettings {
+        width: 64,
+        height: 64,
+        terms: TermSet::ALL,
+        ..RenderSettings::default()
+    };
+    let context = RenderContext::new(builtin::load("cornell-glass").unwrap(), settings);
+    // the pixels whose centre sees the glass block
+    let sees_glass = |x: u32, y: u32| {
+        let ray = context.camera.generate(x, y, Vec2::splat(0.5));
+        matches!(context.accel.closest_hit(&ray), Some(Hit::Triangle { triangle, .. })
+            if context.scene.objects[context.scene.object_of_triangle(triangle) as usize].name == "glass block")
+    };
+    let pixels: Vec<(u32, u32)> = (0..64)
+        .flat_map(|y| (0..64).map(move |x| (x, y)))
+        .filter(|&(x, y)| sees_glass(x, y))
+        .step_by(7)
+        .collect();
+    assert!(pixels.len() >= 10, "{} pixels on the block", pixels.len());
+    let (mut refractions, mut bounces) = (0, 0);
+    for (x, y) in pixels {
+        for sample in 0..16 {
+            let stream = SampleStream::new(3, (y * 64 + x) as u64, sample);
+            let mut log = PathLog::default();
+            context.trace_recorded(x, y, &stream, &mut RayCounts::default(), &mut log);
+            for line in path_lines(&log, &context.camera, TermSet::ALL) {
+                let SegmentKind::Bounce { refracted } = log.segments[line.segment].kind else {
+                    assert!(!line.role.is_refracted());
+                    continue;
+                };
+                assert_eq!(line.role.is_refracted(), refracted);
+                assert_eq!(line.role.describe().contains("refraction"), refracted);
+                if refracted {
+                    refractions += 1;
+                } else {
+                    bounces += 1;
+                }
+            }
+        }
+    }
+    assert!(
+        refractions > 100 && bounces > 10,
+        "{refractions} refractions, {bounces} bounces"
+    );
 }

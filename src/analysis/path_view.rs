@@ -14,6 +14,7 @@
 //! gathered, none    grey                             dashed, thin
 //! bounce            the term of the vertex it reaches (its light samples add to it)
 //! last bounce       the term its emission adds to (the path ends where it lands)
+//! refracted bounce  as a bounce, outlined in white: it crossed glass
 //! ```
 //!
 //! A bounce from the first hit is coloured L2: the light samples at its end
@@ -34,13 +35,16 @@ use crate::transport::path_log::{PathLog, PathSegment, SegmentKind};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RayRole {
     Camera,
-    /// A continuation reaching a vertex whose light samples add to `term`.
+    /// A continuation reaching a vertex whose light samples add to `term`;
+    /// `refracted` if it went through glass.
     Bounce {
         term: Term,
+        refracted: bool,
     },
     /// The path's last continuation: the emission it finds adds to `term`.
     LastBounce {
         term: Term,
+        refracted: bool,
     },
     /// A shadow ray that reached its light sample, adding to `term`.
     ShadowLit {
@@ -66,11 +70,14 @@ impl RayRole {
         let term = segment.term;
         match segment.kind {
             SegmentKind::Camera => RayRole::Camera,
-            SegmentKind::Bounce if terms.contains(next_term(term)) => RayRole::Bounce {
-                term: next_term(term),
-            },
+            SegmentKind::Bounce { refracted } if terms.contains(next_term(term)) => {
+                RayRole::Bounce {
+                    term: next_term(term),
+                    refracted,
+                }
+            }
             // the path ends where this ray lands: it only looks for a light
-            SegmentKind::Bounce => RayRole::LastBounce { term },
+            SegmentKind::Bounce { refracted } => RayRole::LastBounce { term, refracted },
             SegmentKind::Shadow {
                 occluded: false, ..
             } => RayRole::ShadowLit { term },
@@ -84,12 +91,26 @@ impl RayRole {
     /// missed rays wear their own).
     pub fn colour_term(self) -> Option<Term> {
         match self {
-            RayRole::Bounce { term }
-            | RayRole::LastBounce { term }
+            RayRole::Bounce { term, .. }
+            | RayRole::LastBounce { term, .. }
             | RayRole::ShadowLit { term }
             | RayRole::GatherLit { term } => Some(term),
             RayRole::Camera | RayRole::ShadowBlocked { .. } | RayRole::GatherMissed { .. } => None,
         }
+    }
+
+    /// Whether the ray went through glass (drawn outlined in white).
+    pub fn is_refracted(self) -> bool {
+        matches!(
+            self,
+            RayRole::Bounce {
+                refracted: true,
+                ..
+            } | RayRole::LastBounce {
+                refracted: true,
+                ..
+            }
+        )
     }
 
     /// Whether the ray is drawn dashed: it added nothing.
@@ -104,10 +125,14 @@ impl RayRole {
     pub fn describe(self) -> String {
         match self {
             RayRole::Camera => "camera ray".into(),
-            RayRole::Bounce { term } => format!("bounce to an {} vertex", term.label()),
-            RayRole::LastBounce { term } => {
-                format!("last bounce, looks for a light ({})", term.label())
+            RayRole::Bounce { term, refracted } => {
+                format!("{} to an {} vertex", bounce_word(refracted), term.label())
             }
+            RayRole::LastBounce { term, refracted } => format!(
+                "last {}, looks for a light ({})",
+                bounce_word(refracted),
+                term.label()
+            ),
             RayRole::ShadowLit { term } => {
                 format!("{} shadow ray, reaches the light", term.label())
             }
@@ -120,6 +145,11 @@ impl RayRole {
             }
         }
     }
+}
+
+/// "bounce", or "refraction" for a continuation through glass.
+fn bounce_word(refracted: bool) -> &'static str {
+    if refracted { "refraction" } else { "bounce" }
 }
 
 /// The term after `term` (L3+ stays L3+).
@@ -257,10 +287,20 @@ pub fn role_rgb(role: RayRole) -> [u8; 3] {
         RayRole::Camera => [255, 255, 255],
         RayRole::ShadowBlocked { .. } => [235, 70, 60],
         RayRole::GatherMissed { .. } => [170, 170, 170],
-        RayRole::Bounce { term }
-        | RayRole::LastBounce { term }
+        RayRole::Bounce { term, .. }
+        | RayRole::LastBounce { term, .. }
         | RayRole::ShadowLit { term }
         | RayRole::GatherLit { term } => term_rgb(term),
+    }
+}
+
+/// The outline drawn under a ray (8-bit sRGB): white for a refraction
+/// through glass, else near black, so that the ray shows on any image.
+pub fn outline_rgb(role: RayRole) -> [u8; 3] {
+    if role.is_refracted() {
+        [245, 245, 245]
+    } else {
+        [12, 12, 12]
     }
 }
 

@@ -12,7 +12,7 @@ use crate::render::progressive::Snapshot;
 use crate::render::settings::Choice;
 use crate::render::settings::{
     Adaptive, BrdfOverride, IndirectSampling, Integrator, LightMode, LightSampling, LightSelection,
-    MAX_SAMPLES_PER_VERTEX, MisHeuristic, RenderSettings, Sampler, Term, Tonemap,
+    MAX_IOR, MAX_SAMPLES_PER_VERTEX, MisHeuristic, RenderSettings, Sampler, Term, Tonemap,
 };
 
 /// French name and formula of each term, shown on hover (from the course).
@@ -23,15 +23,18 @@ fn term_tooltip(term: Term) -> &'static str {
              Computed in transport/lecture.rs: emission"
         }
         Term::L1 => {
-            "Direct lighting (fr: éclairage direct)\nL1 = Σ_s ∫_Ωs Le(q, −ω) fr(p, ω→ωo) |cos θ| dω\nLight from the sources, reflected once.\n\
+            "Direct lighting (fr: éclairage direct)\nL1 = Σ_s ∫_Ωs Le(q, −ω) fr(p, ω→ωo) |cos θ| dω\nLight from the sources, reflected once (or refracted once: a refraction counts as a reflection).\n\
+             Mirror and glass cannot sample a light: their L1 is the light seen in their one direction.\n\
              Computed in transport/lecture.rs: direct_lighting"
         }
         Term::L2 => {
             "Indirect lighting (fr: éclairage indirect)\nL2 = ∫_(Ω+ − ΩS) L_direct(q, −ω) fr(p, ω→ωo) |cos θ| dω\nLight reflected twice: q's direct lighting, reflected at p.\n\
+             A light seen through a glass block is L2 (two refractions).\n\
              Computed in transport/lecture.rs: radiance_by_term (l[2] = …), from bounce and direct_lighting at q"
         }
         Term::L3Plus => {
             "Three reflections or more (fr: trois réflexions et plus)\nL3+ = L − L0 − L1 − L2\nThe rest of the full solution.\n\
+             The room seen through glass, and a caustic under it (light → glass → glass → floor → eye), are L3.\n\
              Computed in transport/lecture.rs: beyond_two_reflections"
         }
     }
@@ -249,7 +252,10 @@ fn materials_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 .selected_text(brdf_text(settings.brdf))
                 .show_ui(ui, |ui| {
                     for brdf in BrdfOverride::iter() {
-                        ui.selectable_value(&mut settings.brdf, brdf, brdf_text(brdf));
+                        let choice = ui.selectable_value(&mut settings.brdf, brdf, brdf_text(brdf));
+                        if brdf == BrdfOverride::Glass {
+                            choice.on_hover_text(super::interact::GLASS_TOOLTIP);
+                        }
                     }
                 });
             ui.add_enabled(
@@ -258,6 +264,13 @@ fn materials_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                     .logarithmic(true)
                     .text("Phong exponent"),
             );
+            ui.add_enabled(
+                settings.brdf == BrdfOverride::Glass,
+                egui::Slider::new(&mut settings.glass_ior, 1.0..=MAX_IOR)
+                    .text("glass η")
+                    .custom_formatter(|v, _| format!("{v:.2}")),
+            )
+            .on_hover_text("Index of refraction of --brdf glass: water 1.33, glass 1.5, diamond 2.42 (authored glass keeps its own)");
         });
 }
 

@@ -394,7 +394,13 @@ fn paint_path(painter: &egui::Painter, mapping: &ImageMapping, lines: &[PathLine
                 4.0,
             ));
         } else {
-            painter.line_segment([from, to], egui::Stroke::new(width + 1.5, outline));
+            let edge = if line.role.is_refracted() {
+                let [r, g, b] = path_view::outline_rgb(line.role);
+                egui::Color32::from_rgb(r, g, b)
+            } else {
+                outline
+            };
+            painter.line_segment([from, to], egui::Stroke::new(width + 1.5, edge));
             painter.line_segment([from, to], egui::Stroke::new(width, colour));
         }
         if line.ends_on_film && !matches!(line.role, RayRole::GatherMissed { .. }) {

@@ -29,6 +29,8 @@ pub struct StepSettings {
     pub brdf: Option<BrdfOverride>,
     pub phong_exponent: Option<f32>,
     pub phong_specular: Option<f32>,
+    /// The index of refraction of `brdf = "glass"`.
+    pub glass_ior: Option<f32>,
     #[serde(default, with = "named")]
     pub light_sampling: Option<LightSampling>,
     #[serde(default, with = "named")]
@@ -116,6 +118,7 @@ impl StepSettings {
         set(&mut s.brdf, &self.brdf);
         set(&mut s.phong_exponent, &self.phong_exponent);
         set(&mut s.phong_specular, &self.phong_specular);
+        set(&mut s.glass_ior, &self.glass_ior);
         set(&mut s.light_sampling, &self.light_sampling);
         set(&mut s.mis_heuristic, &self.mis_heuristic);
         set(&mut s.indirect_sampling, &self.indirect_sampling);

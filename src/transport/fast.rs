@@ -664,13 +664,16 @@ impl<'a> Walk<'a> {
         }
         self.tally.bounce(lowest_selected(self.terms, next));
         let ray = vertex.point.spawn_ray(wi);
+        let kind = SegmentKind::Bounce {
+            refracted: sample.wi.z < 0.0,
+        };
         if next >= self.last_reflection {
             // the path ends where this ray lands: it only looks for a light
             let term = Term::of_reflections(next);
-            self.find_emitter(&ray, *throughput, weight, SegmentKind::Bounce, term);
+            self.find_emitter(&ray, *throughput, weight, kind, term);
             return None;
         }
-        self.follow(ray, next, *throughput, weight, SegmentKind::Bounce)
+        self.follow(ray, next, *throughput, weight, kind)
     }
 
     // ── emission ─────────────────────────────────────────────────────

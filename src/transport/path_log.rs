@@ -48,8 +48,11 @@ pub struct PathSegment {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SegmentKind {
     Camera,
-    /// A continuation of the path (next reflection).
-    Bounce,
+    /// A continuation of the path (next reflection, or a refraction
+    /// through glass: `refracted`).
+    Bounce {
+        refracted: bool,
+    },
     /// Towards a light sample.
     Shadow {
         occluded: bool,

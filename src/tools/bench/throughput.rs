@@ -65,7 +65,7 @@ impl RayKind {
         match kind {
             SegmentKind::Camera => RayKind::Camera,
             SegmentKind::Shadow { .. } => RayKind::Shadow,
-            SegmentKind::Bounce => RayKind::Bounce,
+            SegmentKind::Bounce { .. } => RayKind::Bounce,
             SegmentKind::Gather { .. } => RayKind::Gather,
         }
     }

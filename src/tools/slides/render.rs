@@ -16,7 +16,7 @@ use super::canvas::{self, Canvas, Rect, Rgb8};
 use super::shown::{ShownImage, ShownPicture, ShownTile, SrgbImage, compose_shown};
 use super::{Slide, SlideLayout, TEXT_COLOR};
 use crate::analysis::noise::{DisplayMode, FalseColour, NoiseView, false_colour, format_tick};
-use crate::analysis::path_view::{PathLine, RayRole, path_lines, role_rgb};
+use crate::analysis::path_view::{PathLine, RayRole, outline_rgb, path_lines, role_rgb};
 use crate::lesson::StepView;
 use crate::render::color::linear_to_srgb;
 use crate::render::context::RenderContext;
@@ -271,7 +271,8 @@ pub(super) fn draw_paths(canvas: &mut Canvas, image: Rect, film: (u32, u32), lin
         if line.role.is_dashed() {
             canvas.draw_segment((from, to), width, colour, Some((6.0 * s, 4.0 * s)), image);
         } else {
-            canvas.draw_segment((from, to), width + 1.5 * s, outline, None, image);
+            let edge = outline_rgb(line.role);
+            canvas.draw_segment((from, to), width + 1.5 * s, edge, None, image);
             canvas.draw_segment((from, to), width, colour, None, image);
         }
         if line.ends_on_film && !matches!(line.role, RayRole::GatherMissed { .. }) {

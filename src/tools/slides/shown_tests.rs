@@ -306,7 +306,10 @@ fn the_probe_rays_are_scaled_with_the_image() {
     let line = PathLine {
         from: Vec2::new(0.0, 24.0),
         to: Vec2::new(64.0, 24.0),
-        role: RayRole::Bounce { term: Term::L2 },
+        role: RayRole::Bounce {
+            term: Term::L2,
+            refracted: false,
+        },
         segment: 1,
         ends_on_film: false,
     };
