@@ -96,6 +96,40 @@ fn a_white_furnace_with_a_glass_sphere_keeps_its_radiance() {
     }
 }
 
+/// The camera inside a clear glass ball (η = 1.5) at the centre of a black
+/// furnace wall emitting E = 1: each camera ray meets the ball from inside
+/// at normal incidence and leaves with probability 1 − F, F = (0.5/2.5)² =
+/// 0.04, its radiance scaled by n_glass²/n_air² = 2.25 (radiance is η²
+/// denser in glass: `docs/conventions.md`); the rest reflects back through
+/// the centre to the opposite side, and so on. So L0 = 0 and
+/// L_k = F^(k−1) (1 − F) · 2.25 for k ≥ 1, L3+ = F² · 2.25. The facets of
+/// the tessellated ball tilt the incidence by up to 2°, which moves F by
+/// under 10⁻⁴ of itself (F is flat at normal incidence).
+#[test]
+fn inside_glass_radiance_is_eta_squared_denser() {
+    let mut scene = furnace(0.0, 1.0);
+    let glass = scene.add_material(Material::glass("glass", Vec3::ONE, 1.5));
+    let (positions, triangles) = uv_sphere(Vec3::ZERO, 0.5, 96, 48, false);
+    scene.add_mesh("glass ball", glass, &positions, &triangles);
+    let f = 0.04f64;
+    let expected = [0.0, (1.0 - f) * 2.25, f * (1.0 - f) * 2.25, f * f * 2.25];
+    for integrator in [Integrator::Fast, Integrator::Lecture] {
+        let settings = RenderSettings {
+            integrator,
+            ..small(32, 32, TermSet::ALL)
+        };
+        let film = render_film(scene.clone(), &settings, 64);
+        for term in Term::ALL {
+            let (mean, error) = mean_and_error(&film, term);
+            let exact = expected[term.index()];
+            assert!(
+                (mean - exact).abs() <= 4.5 * error + 1e-3 * exact + 1e-6,
+                "{integrator} {term}: {mean:.6} ± {error:.1e}, expected {exact:.6}"
+            );
+        }
+    }
+}
+
 /// A direction through glass `point`'s surface drawn by its model with the
 /// pair `u`, and the ray leaving along it; `None` if none leaves.
 fn interact(context: &RenderContext, hit: &Hit, ray: &Ray, u: Vec2) -> Option<(Ray, bool)> {
