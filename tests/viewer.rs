@@ -136,6 +136,42 @@ fn clicking_an_object_selects_it_and_its_model_can_change_alone() {
     );
 }
 
+/// The selection's model can be glass: the wall becomes glass alone (its
+/// glTF transmission 1), and its index of refraction appears; the global
+/// material choice has glass too, which the worker renders.
+#[test]
+fn an_object_and_every_material_can_become_glass() {
+    let mut harness = harness();
+    let rect = harness.state().image_rect().expect("the image is drawn");
+    let on_red_wall = rect.min + egui::vec2(rect.width() * 0.22, rect.height() * 0.5);
+    mouse_drag(&mut harness, on_red_wall, on_red_wall);
+    let selected = harness.state().selected.expect("a click selects an object") as usize;
+    harness.get_by_label("model").click();
+    harness.run_steps(2);
+    harness.get_by_label("Glass").click();
+    harness.run_steps(2);
+    let scene = &harness.state().scene;
+    let material = &scene.materials[scene.objects[selected].material as usize];
+    assert_eq!(material.brdf_model(), lumiere::scene::BrdfModel::Glass);
+    assert_eq!((material.transmission, material.ior), (1.0, 1.5));
+    assert!(harness.get_all_by_label("η (index of refraction)").count() >= 1);
+
+    harness.get_by_label("BRDF").click();
+    harness.run_steps(2);
+    harness.get_all_by_label("Glass").last().unwrap().click();
+    harness.run_steps(2);
+    assert_eq!(
+        harness.state().state.settings.brdf,
+        lumiere::BrdfOverride::Glass
+    );
+    wait_for(&mut harness, "a pass with glass everywhere", |s| {
+        s.samples_per_pixel() >= 1
+            && s.source
+                .as_ref()
+                .is_some_and(|source| source.settings.brdf == lumiere::BrdfOverride::Glass)
+    });
+}
+
 #[test]
 fn dragging_the_image_orbits_the_camera_and_restarts() {
     let mut harness = harness();
