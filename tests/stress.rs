@@ -24,6 +24,7 @@ fn every_stress_case_passes_without_invalid_samples_or_leaks() {
         Case::WhiteFurnace,
         Case::MirrorCorridor,
         Case::Grazing,
+        Case::GlassBall,
     ] {
         let report = reports.iter().find(|r| r.case == case).unwrap();
         assert!(report.energy_error.is_some(), "{case}: {printed}");

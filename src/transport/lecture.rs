@@ -186,8 +186,9 @@ fn emission(context: &RenderContext, hit: &Hit, ray: &Ray) -> Vec3 {
 /// `vertex` earlier reflections.
 ///
 /// A mirror or glass cannot sample a source (its f_r is a Dirac): it
-/// passes on the light it sees in its one direction. Elsewhere the sum over the sources
-/// is estimated by one source s drawn with probability P(s), proportional to
+/// passes on the light it sees in its one direction (glass draws
+/// reflection or refraction). Elsewhere the sum over the sources is
+/// estimated by one source s drawn with probability P(s), proportional to
 /// its power: E[x_s / P(s)] = Σ_s x_s, for any number of sources; or, with
 /// a quality for each source, by each source's own samples.
 fn direct_lighting(

@@ -84,6 +84,9 @@ fn half_furnace(_: LightMode) -> [Option<f64>; Term::COUNT] {
     furnace_terms(0.5, 1.0, 16).map(Some)
 }
 
+/// The reflections every render case allows (unless it says otherwise).
+const CASE_BOUNCES: u32 = 16;
+
 /// The settings every render case starts from: all terms, 16 bounces.
 fn case_settings(effort: Effort) -> RenderSettings {
     let (width, height, _) = film_size(effort);
@@ -91,7 +94,7 @@ fn case_settings(effort: Effort) -> RenderSettings {
         width,
         height,
         terms: TermSet::ALL,
-        max_bounces: 16,
+        max_bounces: CASE_BOUNCES,
         ..RenderSettings::default()
     }
 }
@@ -192,6 +195,7 @@ fn setup(case: Case, effort: Effort) -> Setup {
             keep: every_pixel,
             tolerance: [0.0; Term::COUNT],
         },
+        Case::GlassBall => glass_ball(settings),
         Case::Grazing => grazing(settings),
         Case::LightOnSurface => light_on_surface(settings),
         Case::SphereLeaks | Case::MillionSamples => unreachable!("not a render case"),
@@ -308,6 +312,47 @@ fn point_in_sphere(settings: &RenderSettings, radius: f32, centre: Vec3, copies:
 
 /// The plane lit 89.9° from its normal: on the pixels wholly on it,
 /// L1 = ρ E⊥ cos θ / π, and nothing reflects twice.
+/// Index of refraction of the glass ball (diamond's): F = ((η − 1)/(η + 1))²
+/// = 0.17 at normal incidence, so internal reflections go on for long.
+const BALL_IOR: f64 = 2.4;
+
+/// The camera at the centre of a clear glass ball of radius 0.5 inside a
+/// black furnace of radius 1 emitting E = 1. Each camera ray leaves the
+/// ball at normal incidence with probability 1 − F, its radiance η² times
+/// that outside (radiance is η² denser in glass), or reflects back through
+/// the centre: L0 = 0, L_k = F^(k−1) (1 − F) η² up to the last bounce. The
+/// facets tilt the incidence by under 2°, which moves F by under 10⁻⁵ of
+/// itself, but each internal reflection moves the ray off the centre a
+/// little more: 10⁻³ of each term is allowed.
+fn glass_ball(settings: RenderSettings) -> Setup {
+    let mut scene = furnace_scene(1.0, Vec3::ZERO, glowing_wall(0.0, 1.0), 48, 24);
+    let glass = scene.add_material(Material::glass("diamond", Vec3::ONE, BALL_IOR as f32));
+    let (positions, triangles) = crate::scene::builtin::uv_sphere(Vec3::ZERO, 0.5, 96, 48, false);
+    scene.add_mesh("ball", glass, &positions, &triangles);
+    Setup {
+        scene,
+        settings,
+        light_modes: AUTHORED,
+        closed: true,
+        exact: |_| {
+            let f = ((BALL_IOR - 1.0) / (BALL_IOR + 1.0)).powi(2);
+            let inside = BALL_IOR * BALL_IOR;
+            // L3+ sums k = 3 … the last bounce
+            let beyond: f64 = (3..=CASE_BOUNCES as i32)
+                .map(|k| f.powi(k - 1) * (1.0 - f))
+                .sum();
+            [
+                Some(0.0),
+                Some((1.0 - f) * inside),
+                Some(f * (1.0 - f) * inside),
+                Some(beyond * inside),
+            ]
+        },
+        keep: every_pixel,
+        tolerance: [1e-3; Term::COUNT],
+    }
+}
+
 fn grazing(settings: RenderSettings) -> Setup {
     Setup {
         scene: grazing_scene(),

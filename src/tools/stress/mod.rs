@@ -78,6 +78,9 @@ pub enum Case {
     SphereLeaks,
     /// Albedo 1: every term equals the emission.
     WhiteFurnace,
+    /// The camera inside a diamond ball: radiance η² denser, chains of
+    /// internal reflections.
+    GlassBall,
     /// One pixel accumulating 10⁶ samples.
     MillionSamples,
 }
@@ -104,6 +107,9 @@ impl Case {
                 "closed sphere, rays through its vertices and edges, at 0 and 1e4 m"
             }
             Case::WhiteFurnace => "furnace of albedo 1: L0 = L1 = L2 = E, L3+ = (max - 2) E",
+            Case::GlassBall => {
+                "camera inside a glass ball of eta 2.4 in a black furnace: L_k = F^(k-1) (1 - F) eta^2 E"
+            }
             Case::MillionSamples => "one pixel of the furnace, 1e6 samples: no drift in the sums",
         }
     }
