@@ -248,7 +248,8 @@ fn triangle_glb() -> Vec<u8> {
     common::glb(json, Some(&bin))
 }
 
-/// (name, bytes) of every input: the valid corpus, the Cornell box, and GLB containers.
+/// (name, bytes) of every input: the valid corpus, the Cornell box and its
+/// glass variant, and GLB containers.
 fn inputs() -> Vec<(String, Vec<u8>)> {
     let mut inputs = Vec::new();
     for path in common::gltf_files(&common::corpus_dir().join("valid")) {
@@ -260,6 +261,13 @@ fn inputs() -> Vec<(String, Vec<u8>)> {
             .unwrap();
     inputs.push(("cornell-box.glb".into(), common::glb(&cornell, None)));
     inputs.push(("cornell-box.gltf".into(), cornell));
+    // glass: KHR_materials_transmission and KHR_materials_ior
+    let glass = builtin::SCENES
+        .iter()
+        .find(|s| s.name == "cornell-glass")
+        .unwrap()
+        .gltf();
+    inputs.push(("cornell-glass.gltf".into(), glass.to_vec()));
     inputs.push(("triangle.glb".into(), triangle_glb()));
     inputs
 }

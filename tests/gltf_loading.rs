@@ -752,4 +752,17 @@ fn transmission_and_ior_make_glass() {
         "{:?}",
         thin.warnings
     );
+    // broken extensions are refused, naming the field
+    let missing_texture = glass_variant(
+        r#"{"KHR_materials_transmission": {"transmissionFactor": 1.0, "transmissionTexture": {"index": 99}}}"#,
+        0.0,
+    )
+    .unwrap_err();
+    assert!(
+        missing_texture.contains("transmissionTexture"),
+        "{missing_texture}"
+    );
+    let not_a_number =
+        glass_variant(r#"{"KHR_materials_ior": {"ior": "dense"}}"#, 0.0).unwrap_err();
+    assert!(not_a_number.contains("dense"), "{not_a_number}");
 }
