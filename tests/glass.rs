@@ -11,47 +11,12 @@ use lumiere::geometry::Ray;
 use lumiere::geometry::accel::Hit;
 use lumiere::render::settings::Integrator;
 use lumiere::scene::Material;
-use lumiere::scene::builtin::{self, furnace, uv_sphere};
+use lumiere::scene::builtin::{self, closed_box, furnace, uv_sphere};
 use lumiere::transport::sampler::SampleStream;
 use lumiere::transport::surface::{SurfacePoint, leaves_on_its_side};
 use lumiere::{RenderContext, RenderSettings, Scene, Term, TermSet};
 
 use common::{mean_and_error, render_film, small};
-
-/// The triangles of the box between `lo` and `hi`, each face wound
-/// counter-clockwise seen from outside (its front faces out).
-fn closed_box(lo: Vec3, hi: Vec3) -> (Vec<Vec3>, Vec<[u32; 3]>) {
-    let corner = |i: u32| {
-        Vec3::new(
-            if i & 1 == 0 { lo.x } else { hi.x },
-            if i & 2 == 0 { lo.y } else { hi.y },
-            if i & 4 == 0 { lo.z } else { hi.z },
-        )
-    };
-    let positions: Vec<Vec3> = (0..8).map(corner).collect();
-    let centre = (lo + hi) / 2.0;
-    let faces = [
-        [0, 2, 6, 4],
-        [1, 5, 7, 3],
-        [0, 4, 5, 1],
-        [2, 3, 7, 6],
-        [0, 1, 3, 2],
-        [4, 6, 7, 5],
-    ];
-    let mut triangles = Vec::new();
-    for [a, b, c, d] in faces {
-        let (pa, pb, pd) = (
-            positions[a as usize],
-            positions[b as usize],
-            positions[d as usize],
-        );
-        let outward = (pb - pa).cross(pd - pa).dot(pa - centre) > 0.0;
-        let quad = if outward { [a, b, c, d] } else { [d, c, b, a] };
-        triangles.push([quad[0], quad[1], quad[2]]);
-        triangles.push([quad[0], quad[2], quad[3]]);
-    }
-    (positions, triangles)
-}
 
 /// A scene of one glass object, `tint` and index `ior`, and no light.
 fn glass_scene(positions: &[Vec3], triangles: &[[u32; 3]], tint: Vec3, ior: f32) -> Scene {
@@ -157,6 +122,7 @@ fn a_ray_through_a_glass_slab_leaves_parallel_to_itself() {
     let (positions, triangles) = closed_box(
         Vec3::new(-50.0, -50.0, -thickness),
         Vec3::new(50.0, 50.0, 0.0),
+        false,
     );
     let eta = 1.5f32;
     let context = RenderContext::new(
@@ -216,8 +182,16 @@ fn a_ray_through_a_glass_slab_leaves_parallel_to_itself() {
 fn a_closed_glass_object_never_lets_a_ray_out_unseen() {
     let shapes = [
         uv_sphere(Vec3::new(0.2, -0.1, 0.3), 0.7, 64, 32, false),
-        closed_box(Vec3::new(-0.4, -0.3, -0.5), Vec3::new(0.5, 0.35, 0.45)),
-        closed_box(Vec3::new(-2.0, -2.0, -0.002), Vec3::new(2.0, 2.0, 0.002)),
+        closed_box(
+            Vec3::new(-0.4, -0.3, -0.5),
+            Vec3::new(0.5, 0.35, 0.45),
+            false,
+        ),
+        closed_box(
+            Vec3::new(-2.0, -2.0, -0.002),
+            Vec3::new(2.0, 2.0, 0.002),
+            false,
+        ),
     ];
     for (shape, (positions, triangles)) in shapes.iter().enumerate() {
         let context = RenderContext::new(

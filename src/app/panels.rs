@@ -254,7 +254,7 @@ fn materials_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                     for brdf in BrdfOverride::iter() {
                         let choice = ui.selectable_value(&mut settings.brdf, brdf, brdf_text(brdf));
                         if brdf == BrdfOverride::Glass {
-                            choice.on_hover_text(super::interact::GLASS_TOOLTIP);
+                            choice.on_hover_text(interact::GLASS_TOOLTIP);
                         }
                     }
                 });

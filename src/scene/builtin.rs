@@ -138,6 +138,36 @@ pub fn uv_sphere(
     (positions, triangles)
 }
 
+/// The axis-aligned box between `lo` and `hi`: its 8 corners and 12
+/// triangles, counter-clockwise seen from outside, or from inside if
+/// `inward`.
+pub fn closed_box(lo: Vec3, hi: Vec3, inward: bool) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let corners: Vec<Vec3> = (0..8)
+        .map(|i| {
+            Vec3::new(
+                if i & 1 != 0 { hi.x } else { lo.x },
+                if i & 2 != 0 { hi.y } else { lo.y },
+                if i & 4 != 0 { hi.z } else { lo.z },
+            )
+        })
+        .collect();
+    // faces counter-clockwise seen from outside
+    let quads = [
+        [0, 2, 3, 1], // z = lo
+        [4, 5, 7, 6], // z = hi
+        [0, 4, 6, 2], // x = lo
+        [1, 3, 7, 5], // x = hi
+        [0, 1, 5, 4], // y = lo
+        [2, 6, 7, 3], // y = hi
+    ];
+    let triangles = quads
+        .iter()
+        .map(|&[a, b, c, d]| if inward { [a, d, c, b] } else { [a, b, c, d] })
+        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+        .collect();
+    (corners, triangles)
+}
+
 /// The furnace: the camera at the centre of a closed unit sphere whose inner
 /// surface is Lambertian of albedo `albedo` and emits radiance `emission`.
 /// Every term has a closed form: L_k = albedoᵏ · emission.

@@ -14,19 +14,6 @@ use crate::scene::{BrdfModel, Material, Scene, TextureRef};
 use crate::transport::brdf::Brdf;
 use crate::transport::sampler::mix64;
 
-/// The model of `material` at one point: glass always at glass weight 1,
-/// never at 0, else when `pick()` < the weight; otherwise its
-/// metallic-roughness model.
-#[inline]
-fn authored_model(material: &Material, pick: impl FnOnce() -> f32) -> BrdfModel {
-    let weight = material.glass_weight();
-    if weight >= 1.0 || (weight > 0.0 && pick() < weight) {
-        BrdfModel::Glass
-    } else {
-        material.opaque_model()
-    }
-}
-
 /// Unit normal of the front face of triangle (p0, p1, p2), counter-clockwise
 /// seen from the front; +Z for a degenerate triangle.
 #[inline(always)]
@@ -161,6 +148,19 @@ fn mix_number(p: Vec3, wo: Vec3) -> f32 {
         hash = mix64(hash ^ u64::from(value.to_bits()));
     }
     (hash >> 40) as f32 / (1u64 << 24) as f32
+}
+
+/// The model of `material` at one point: glass always at glass weight 1,
+/// never at 0, else when `pick()` < the weight; otherwise its
+/// metallic-roughness model.
+#[inline]
+fn authored_model(material: &Material, pick: impl FnOnce() -> f32) -> BrdfModel {
+    let weight = material.glass_weight();
+    if weight >= 1.0 || (weight > 0.0 && pick() < weight) {
+        BrdfModel::Glass
+    } else {
+        material.opaque_model()
+    }
 }
 
 /// The course's mapping of a material (with base colour `base` already

@@ -5,7 +5,7 @@
 
 use glam::{Affine3A, Vec3};
 
-use crate::scene::builtin::uv_sphere;
+use crate::scene::builtin::{closed_box, uv_sphere};
 use crate::scene::{Camera, Material, Projection, PunctualKind, PunctualLight, Scene};
 
 /// A camera at `position` looking along `forward` (world +Y up unless `forward` is vertical).
@@ -95,28 +95,8 @@ pub(super) fn corridor_scene(size: Vec3, material: Material) -> Scene {
         ..Scene::default()
     };
     let material = scene.add_material(material);
-    let corners: Vec<Vec3> = (0..8)
-        .map(|i| {
-            Vec3::new(
-                if i & 1 != 0 { size.x } else { 0.0 },
-                if i & 2 != 0 { size.y } else { 0.0 },
-                if i & 4 != 0 { size.z } else { 0.0 },
-            )
-        })
-        .collect();
-    // faces counter-clockwise seen from inside
-    let quads = [
-        [0, 2, 3, 1], // z = 0
-        [4, 5, 7, 6], // z = max
-        [0, 4, 6, 2], // x = 0
-        [1, 3, 7, 5], // x = max
-        [0, 1, 5, 4], // y = 0
-        [2, 6, 7, 3], // y = max
-    ];
-    let triangles: Vec<[u32; 3]> = quads
-        .iter()
-        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-        .collect();
+    // wound facing out: the case's material is double-sided
+    let (corners, triangles) = closed_box(Vec3::ZERO, size, false);
     scene.add_mesh("corridor", material, &corners, &triangles);
     scene.cameras.push(look(
         Vec3::new(0.5 * size.x, 0.5 * size.y, 0.3),
