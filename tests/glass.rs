@@ -9,7 +9,7 @@ use std::sync::Arc;
 use glam::{Vec2, Vec3};
 use lumiere::geometry::Ray;
 use lumiere::geometry::accel::Hit;
-use lumiere::render::settings::Integrator;
+use lumiere::render::settings::{Integrator, Sampler};
 use lumiere::scene::Material;
 use lumiere::scene::builtin::{self, closed_box, furnace, uv_sphere};
 use lumiere::transport::sampler::SampleStream;
@@ -41,6 +41,8 @@ fn a_white_furnace_with_a_glass_sphere_keeps_its_radiance() {
     for integrator in [Integrator::Fast, Integrator::Lecture] {
         let settings = RenderSettings {
             integrator,
+            sampler: Sampler::Independent,
+            auto_indirect_samples: false,
             ..small(32, 32, TermSet::ALL)
         };
         let film = render_film(scene.clone(), &settings, 64);
@@ -81,6 +83,8 @@ fn inside_glass_radiance_is_eta_squared_denser() {
     for integrator in [Integrator::Fast, Integrator::Lecture] {
         let settings = RenderSettings {
             integrator,
+            sampler: Sampler::Independent,
+            auto_indirect_samples: false,
             ..small(32, 32, TermSet::ALL)
         };
         let film = render_film(scene.clone(), &settings, 64);

@@ -281,7 +281,12 @@ fn the_fast_integrators_strategies_agree_with_the_lecture() {
 #[test]
 fn the_fast_integrators_sampling_options_agree_with_the_lecture() {
     let scene = builtin::cornell();
-    let base = settings(24, 18);
+    // plain Monte Carlo, each option changed from there
+    let base = RenderSettings {
+        sampler: Sampler::Independent,
+        auto_indirect_samples: false,
+        ..settings(24, 18)
+    };
     let stratified = RenderSettings {
         sampler: Sampler::Stratified,
         ..base.clone()

@@ -6,7 +6,9 @@ use std::time::{Duration, Instant};
 
 use lumiere::render::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
 use lumiere::scene::builtin;
-use lumiere::{BrdfOverride, RenderSettings, Term, TermSet};
+use lumiere::transport::continuations::Continuations;
+use lumiere::transport::splitting::choose_continuations;
+use lumiere::{BrdfOverride, RenderContext, RenderSettings, Term, TermSet};
 
 fn request() -> ViewRequest {
     let scene = Arc::new(builtin::cornell());
@@ -21,6 +23,7 @@ fn request() -> ViewRequest {
         paused: false,
         stop_at_spp: None,
         term_images: false,
+        film: 0,
     }
 }
 
@@ -113,6 +116,50 @@ fn a_restart_publishes_a_quarter_resolution_preview_first() {
         1,
         "paused: no pass after the preview"
     );
+}
+
+/// The preview does not wait for the splitting pilot: it takes one
+/// continuation per first hit, and the full passes the pilot's counts,
+/// the same as a render of the same settings chooses.
+#[test]
+fn the_pilot_runs_after_the_preview_and_chooses_as_a_render_does() {
+    let mut request = request();
+    request.settings.width = 96;
+    request.settings.height = 72;
+    request.stop_at_spp = Some(1);
+    assert!(request.settings.auto_indirect_samples, "the default");
+    let renderer = ProgressiveRenderer::spawn(request.clone(), || {});
+    let preview = wait_for(&renderer, "the preview", |s| s.generation >= 1);
+    assert!(preview.preview);
+    assert_eq!(preview.continuations, Continuations::uniform(1));
+    let full = wait_for(&renderer, "one full pass", |s| s.idle && !s.preview);
+    let mut context = RenderContext::new(Arc::clone(&request.scene), request.settings.clone());
+    choose_continuations(&mut context);
+    assert!(
+        context.continuations.map.is_some() || context.continuations.count > 1,
+        "the Cornell box's L2 is worth splitting"
+    );
+    assert_eq!(full.continuations, context.continuations);
+}
+
+/// A new film serial (a lesson step opened) restarts the film even when
+/// nothing else changed; the same serial again does not.
+#[test]
+fn a_new_film_serial_restarts_the_film() {
+    let mut request = request();
+    request.stop_at_spp = Some(2);
+    let renderer = ProgressiveRenderer::spawn(request.clone(), || {});
+    wait_for(&renderer, "2 spp", |s| s.idle && !s.preview);
+    request.film += 1;
+    renderer.request(request.clone());
+    let restarted = wait_for(&renderer, "the restart", |s| {
+        s.restarts == 2 && s.idle && !s.preview
+    });
+    assert_eq!(restarted.samples_per_pixel(), 2);
+    request.stop_at_spp = Some(3);
+    renderer.request(request.clone());
+    let more = wait_for(&renderer, "3 spp", |s| s.samples_per_pixel() >= 3 && s.idle);
+    assert_eq!(more.restarts, 2, "the same serial keeps the film");
 }
 
 #[test]

@@ -768,6 +768,9 @@ fn every_sampler_renders_the_same_bits_whatever_the_threads_and_terms() {
     for sampler in Sampler::all() {
         let mut settings = small(32, 24, TermSet::ALL);
         settings.sampler = sampler;
+        // the pilot chooses the continuations for the terms asked: a term
+        // alone gets the same numbers at a fixed count
+        settings.auto_indirect_samples = false;
         let one = render_with_threads(&settings, 3, 1);
         let two = render_with_threads(&settings, 3, 2);
         assert!(

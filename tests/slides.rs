@@ -187,7 +187,7 @@ fn the_export_writes_one_slide_per_step_with_its_name_and_size_and_an_index_of_t
         .matches(&format!(" · {SPP} spp, seed {SEED}\n"))
         .count();
     assert_eq!(settings, lesson.steps.len());
-    assert!(index.contains("scene cornell, terms L2, sampler sobol, exposure +2 EV"));
+    assert!(index.contains("scene cornell, terms L2, exposure +2 EV"));
     assert!(!index.contains(".gif"), "no GIF without --gif");
 }
 

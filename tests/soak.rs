@@ -128,6 +128,7 @@ fn thousands_of_random_setting_changes_never_block_crash_or_grow_memory() {
         paused: false,
         stop_at_spp: None,
         term_images: false,
+        film: 0,
     };
     let renderer = ProgressiveRenderer::spawn_with_threads(first, Some(2), || {});
     let mut numbers = Numbers(0x9e37_79b9_7f4a_7c15);
@@ -144,6 +145,8 @@ fn thousands_of_random_setting_changes_never_block_crash_or_grow_memory() {
             stop_at_spp: numbers.chance(3).then(|| 1 + numbers.below(4) as u32),
             // the four-up's images of each term, now and then
             term_images: numbers.chance(3),
+            // a lesson step opened, now and then
+            film: numbers.below(2) as u64,
         };
         let start = Instant::now();
         renderer.request(request);
@@ -179,6 +182,7 @@ fn thousands_of_random_setting_changes_never_block_crash_or_grow_memory() {
         paused: false,
         stop_at_spp: None,
         term_images: true,
+        film: 0,
     });
     wait_for(&renderer, "the last request's image", |s| {
         s.source

@@ -17,6 +17,7 @@ use lumiere::render::progressive::Snapshot;
 use lumiere::render::settings::{DisplaySettings, Layout};
 use lumiere::render::{Budget, render};
 use lumiere::scene::builtin;
+use lumiere::transport::splitting::choose_continuations;
 use lumiere::{BrdfOverride, Film, LightMode, RenderContext, Term, TermSet};
 
 #[path = "common/viewer.rs"]
@@ -42,7 +43,8 @@ fn shot_when(
 /// term's means and standard errors.
 fn film_of(snapshot: &Snapshot) -> Film {
     let settings = &snapshot.source.as_ref().expect("a rendered image").settings;
-    let context = RenderContext::new(builtin::cornell(), settings.clone());
+    let mut context = RenderContext::new(builtin::cornell(), settings.clone());
+    choose_continuations(&mut context);
     let mut film = Film::new(settings.width, settings.height);
     render(
         &context,

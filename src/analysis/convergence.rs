@@ -34,6 +34,7 @@ pub struct EstimatorKey {
     pub indirect_sampling: IndirectSampling,
     pub light_samples: u32,
     pub indirect_samples: u32,
+    pub auto_indirect_samples: bool,
     pub light_selection: LightSelection,
     pub sampler: Sampler,
     pub adaptive: Option<Adaptive>,
@@ -47,6 +48,7 @@ impl EstimatorKey {
             indirect_sampling: settings.indirect_sampling,
             light_samples: settings.light_samples,
             indirect_samples: settings.indirect_samples,
+            auto_indirect_samples: settings.auto_indirect_samples,
             light_selection: settings.light_selection,
             sampler: settings.sampler,
             adaptive: settings.adaptive,
@@ -60,13 +62,14 @@ impl EstimatorKey {
         settings.indirect_sampling = self.indirect_sampling;
         settings.light_samples = self.light_samples;
         settings.indirect_samples = self.indirect_samples;
+        settings.auto_indirect_samples = self.auto_indirect_samples;
         settings.light_selection = self.light_selection;
         settings.sampler = self.sampler;
         settings.adaptive = self.adaptive;
     }
 
     /// Short name: light sampling · indirect sampling · sampler, then what
-    /// differs from the defaults ("mis·brdf·sobol", "area·cosine·independent·4 light").
+    /// differs from the defaults ("mis·brdf·sobol·auto split", "area·cosine·independent·4 light").
     pub fn label(&self) -> String {
         let defaults = RenderSettings::default();
         let mut light = self.light_sampling.label().to_string();
@@ -82,7 +85,9 @@ impl EstimatorKey {
         if self.light_samples != 1 {
             parts.push(format!("{} light", self.light_samples));
         }
-        if self.indirect_samples != 1 {
+        if self.auto_indirect_samples {
+            parts.push("auto split".into());
+        } else if self.indirect_samples != 1 {
             parts.push(format!("{} indirect", self.indirect_samples));
         }
         if self.light_selection != defaults.light_selection {
@@ -294,13 +299,17 @@ mod tests {
     #[test]
     fn labels_name_the_strategies_and_what_differs_from_the_defaults() {
         let mut settings = RenderSettings::default();
-        assert_eq!(EstimatorKey::of(&settings).label(), "mis·brdf·independent");
-        settings.sampler = Sampler::Sobol;
+        assert_eq!(
+            EstimatorKey::of(&settings).label(),
+            "mis·brdf·sobol·auto split"
+        );
+        settings.sampler = Sampler::Independent;
+        settings.auto_indirect_samples = false;
         settings.light_samples = 4;
         settings.mis_heuristic = MisHeuristic::Balance;
         assert_eq!(
             EstimatorKey::of(&settings).label(),
-            "mis(balance)·brdf·sobol·4 light"
+            "mis(balance)·brdf·independent·4 light"
         );
     }
 }

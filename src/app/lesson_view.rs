@@ -21,6 +21,9 @@ pub struct LessonState {
     pub presenting: bool,
     /// Text of the lesson file field.
     pub file_field: String,
+    /// Steps opened so far: each opening asks for a new film
+    /// (`ViewRequest::film`), even when only the terms change.
+    pub opened: u64,
 }
 
 /// The key that enters and leaves presentation mode.
@@ -144,6 +147,7 @@ pub fn show_step(app: &mut LumiereApp, index: usize) {
         return fail(app, &format!("{}: {e}", view.scene));
     }
     app.lesson.step = index;
+    app.lesson.opened += 1;
     if let Some(scene) = new_scene {
         app.show_scene(&view.scene, scene);
     }

@@ -254,6 +254,7 @@ impl LumiereApp {
             stop_at_spp: options.exit_after_spp.or(state.stop_at_spp),
             // the first frame asks for them if the four-up is shown
             term_images: false,
+            film: 0,
         };
         let renderer = ProgressiveRenderer::spawn(request.clone(), move || ctx.request_repaint());
         let mut probe = probe_view::ProbeState::default();
@@ -349,6 +350,7 @@ impl LumiereApp {
             paused: self.paused || self.errors.capturing(),
             stop_at_spp: self.exit_after_spp.or(self.state.stop_at_spp),
             term_images: four_up_view::active(self),
+            film: self.lesson.opened,
         }
     }
 
@@ -719,6 +721,7 @@ fn same_request(a: &ViewRequest, b: &ViewRequest) -> bool {
         && a.paused == b.paused
         && a.stop_at_spp == b.stop_at_spp
         && a.term_images == b.term_images
+        && a.film == b.film
 }
 
 /// Opens the viewer window and runs until it is closed.

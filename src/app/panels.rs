@@ -286,8 +286,40 @@ fn sampling_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             let fast = settings.integrator == Integrator::Fast;
             ui.add_enabled_ui(fast, |ui| strategies_ui(ui, settings));
             combo(ui, "sampler", &mut settings.sampler, sampler_hint);
+            estimator_presets_ui(ui, settings);
             adaptive_ui(ui, &mut settings.adaptive);
         });
+}
+
+/// The two estimators a lecturer switches between: the default, the
+/// fastest measured, and plain Monte Carlo, whose noise the lessons teach.
+fn estimator_presets_ui(ui: &mut egui::Ui, settings: &mut RenderSettings) {
+    ui.horizontal(|ui| {
+        let fastest = RenderSettings::default();
+        if ui
+            .button("fastest (default)")
+            .on_hover_text(
+                "Sobol points and the pilot's continuations per first hit: \
+                 the fastest to a given error that lumiere measured",
+            )
+            .clicked()
+        {
+            settings.sampler = fastest.sampler;
+            settings.auto_indirect_samples = fastest.auto_indirect_samples;
+        }
+        if ui
+            .button("plain Monte Carlo")
+            .on_hover_text(
+                "Independent numbers and one continuation per first hit: \
+                 the noise of the course, falling as 1/√N",
+            )
+            .clicked()
+        {
+            settings.sampler = Sampler::Independent;
+            settings.indirect_samples = 1;
+            settings.auto_indirect_samples = false;
+        }
+    });
 }
 
 /// The fast integrator's estimators: direct and indirect strategies, MIS
@@ -455,7 +487,9 @@ fn sampler_hint(sampler: Sampler) -> &'static str {
     match sampler {
         Sampler::Independent => "Independent uniform numbers: error falls as 1/√N",
         Sampler::Stratified => "Jittered strata over blocks of 16 samples",
-        Sampler::Sobol => "Owen-scrambled Sobol points: lower error for smooth integrands",
+        Sampler::Sobol => {
+            "Owen-scrambled Sobol points (the default): lower error for smooth integrands"
+        }
     }
 }
 

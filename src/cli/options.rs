@@ -60,7 +60,7 @@ pub struct SceneOptions {
     /// Light samples (shadow rays or gathered directions) per vertex.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=MAX_SAMPLES_PER_VERTEX as i64))]
     pub light_samples: u32,
-    /// Continuations per first hit (splitting), each weighted 1/M; `auto`: the count that reaches a given relMSE soonest, chosen by a pilot [default: 1; bench: 1 and auto]
+    /// Continuations per first hit (splitting), each weighted 1/M; `auto`: the count that reaches a given relMSE soonest, chosen by a pilot [default: auto; bench: 1 and auto]
     #[arg(long, value_parser = parse_indirect_samples)]
     pub indirect_samples: Option<IndirectSamples>,
     /// How a light is picked: uniform or power.
@@ -69,8 +69,8 @@ pub struct SceneOptions {
     /// A quality for each source, repeatable: `NAME=N` gives the source NAME (a light's or an emissive material's name) its own N light samples per vertex, `NAME=off` switches it off (it emits nothing).
     #[arg(long = "source", value_name = "NAME=N|off", value_parser = parse_source_quality)]
     pub sources: Vec<SourceQuality>,
-    /// Random numbers: independent, stratified (jittered) or sobol (Owen-scrambled).
-    #[arg(long, default_value = "independent")]
+    /// Random numbers: independent, stratified (jittered) or sobol (Owen-scrambled, the fastest to a given error).
+    #[arg(long, default_value = "sobol")]
     pub sampler: Sampler,
     /// Adaptive sampling: stop sampling a pixel's term once its standard error is below this fraction of the pixel's value (e.g. 0.01; default: off, every pixel gets every sample)
     #[arg(long, value_parser = parse_adaptive_threshold)]
@@ -109,7 +109,10 @@ impl SceneOptions {
                 Some(IndirectSamples::Count(m)) => m,
                 _ => 1,
             },
-            auto_indirect_samples: self.indirect_samples == Some(IndirectSamples::Auto),
+            auto_indirect_samples: matches!(
+                self.indirect_samples,
+                None | Some(IndirectSamples::Auto)
+            ),
             light_selection: self.light_selection,
             sampler: self.sampler,
             adaptive: self.adaptive.map(|threshold| Adaptive {

@@ -123,7 +123,10 @@ impl StepSettings {
         set(&mut s.mis_heuristic, &self.mis_heuristic);
         set(&mut s.indirect_sampling, &self.indirect_sampling);
         set(&mut s.light_samples, &self.light_samples);
-        set(&mut s.indirect_samples, &self.indirect_samples);
+        if let Some(count) = self.indirect_samples {
+            s.indirect_samples = count;
+            s.auto_indirect_samples = false;
+        }
         set(&mut s.sampler, &self.sampler);
         set(&mut s.integrator, &self.integrator);
         set(&mut s.sources, &self.sources);

@@ -11,8 +11,9 @@
 //!   (the scene, the light mode, radius, selection and sampling, the
 //!   sources' qualities: [`LightTable::same_lights`]) rebuilds the lights and
 //!   the BVH first. On a restart the film is cleared, a quick preview at a
-//!   quarter of the resolution is published first, then full-resolution passes;
-//!   the pass under way is cancelled between tiles so the restart is prompt;
+//!   quarter of the resolution (one continuation per first hit) is published
+//!   first, then the splitting pilot chooses the continuations, then
+//!   full-resolution passes run; the pass under way is cancelled between tiles so the restart is prompt;
 //! * a change of the visible terms does **not** restart: each term has its own
 //!   accumulator and sample count; hidden terms are no longer computed but keep
 //!   their samples, and a term switched on accumulates from where it was;
@@ -53,6 +54,10 @@ pub struct ViewRequest {
     /// Publish each visible term's image too (`Snapshot::term_images`),
     /// for the four-up layout.
     pub term_images: bool,
+    /// A new value restarts the film even when nothing else changed: a
+    /// lesson step opens on a film of its own, with the continuations the
+    /// pilot chooses for its terms, as `lumiere render` renders the step.
+    pub film: u64,
 }
 
 /// What an image shows: which scene, from where, with which settings.
@@ -223,6 +228,17 @@ impl Drop for ProgressiveRenderer {
     }
 }
 
+/// The continuations per first hit of the preview: the settings' count,
+/// or one when the pilot chooses, so that the first picture does not wait
+/// for the pilot.
+fn preview_continuations(settings: &RenderSettings) -> Continuations {
+    Continuations::uniform(if settings.auto_indirect_samples {
+        1
+    } else {
+        settings.indirect_samples
+    })
+}
+
 /// What the worker renders now.
 struct Current {
     request: ViewRequest,
@@ -230,6 +246,9 @@ struct Current {
     film: Arc<Mutex<Film>>,
     next_sample: u32,
     needs_preview: bool,
+    /// The continuations per first hit are still the preview's: the
+    /// splitting pilot runs after the preview, before the first full pass.
+    needs_pilot: bool,
     elapsed: Duration,
     rays: RayCounts,
     pixel_samples: u64,
@@ -318,6 +337,7 @@ impl Worker {
             || !LightTable::same_lights(&old.settings, settings);
         let restart = rebuild
             || old.camera != request.camera
+            || old.film != request.film
             || RenderSettings {
                 terms: settings.terms,
                 ..old.settings.clone()
@@ -328,7 +348,8 @@ impl Worker {
             current.context.settings = settings.clone();
             current.context.camera =
                 CameraRays::new(&request.camera, settings.width, settings.height);
-            choose_continuations(&mut current.context);
+            current.context.continuations = preview_continuations(settings);
+            current.needs_pilot = true;
             current.film = Arc::new(Mutex::new(Film::new(settings.width, settings.height)));
             *lock(&self.shared.film) = Some(Arc::clone(&current.film));
             current.next_sample = 0;
@@ -356,7 +377,7 @@ impl Worker {
             settings.clone(),
             Some(&request.camera),
         );
-        choose_continuations(&mut context);
+        context.continuations = preview_continuations(&settings);
         let film = Arc::new(Mutex::new(Film::new(settings.width, settings.height)));
         *lock(&self.shared.film) = Some(Arc::clone(&film));
         self.restarts += 1;
@@ -366,6 +387,7 @@ impl Worker {
             request,
             next_sample: 0,
             needs_preview: true,
+            needs_pilot: true,
             elapsed: Duration::ZERO,
             rays: RayCounts::default(),
             pixel_samples: 0,
@@ -387,6 +409,10 @@ impl Worker {
                 self.publish(&film, true, false);
             }
             return;
+        }
+        if current.needs_pilot {
+            choose_continuations(&mut current.context);
+            current.needs_pilot = false;
         }
         let mut film = lock(&current.film);
         let pass = render_pass_cancellable(

@@ -351,11 +351,12 @@ pub enum LightSelection {
 #[strum(serialize_all = "kebab-case", ascii_case_insensitive, parse_err_ty = String, parse_err_fn = unknown_choice::<Sampler>)]
 pub enum Sampler {
     /// Independent uniform numbers (plain Monte Carlo).
-    #[default]
     Independent,
     /// Jittered strata: each dimension pair of a block of samples covers a grid.
     Stratified,
-    /// Owen-scrambled Sobol points (quasi-Monte Carlo), scrambled per pixel.
+    /// Owen-scrambled Sobol points (quasi-Monte Carlo), scrambled per pixel:
+    /// the default, the fastest to a given error measured.
+    #[default]
     Sobol,
 }
 
@@ -672,7 +673,7 @@ impl Default for RenderSettings {
             indirect_sampling: IndirectSampling::default(),
             light_samples: 1,
             indirect_samples: 1,
-            auto_indirect_samples: false,
+            auto_indirect_samples: true,
             light_selection: LightSelection::default(),
             sampler: Sampler::default(),
             adaptive: None,

@@ -9,6 +9,7 @@ use lumiere::geometry::Ray;
 use lumiere::render::{Budget, RenderStats, render};
 use lumiere::transport::counts::RayCounts;
 use lumiere::transport::sampler::SampleStream;
+use lumiere::transport::splitting::choose_continuations;
 use lumiere::{Film, RenderContext, RenderSettings, Scene, Term, TermSet};
 
 /// Adds the plane z = 0, 2·`half_side` wide, facing +z.
@@ -32,7 +33,9 @@ pub fn render_film(scene: Scene, settings: &RenderSettings, spp: u32) -> Film {
 /// invalid samples: the film's guard zeroes a NaN, infinite or negative
 /// sample before it reaches the film, so only its count can show one.
 pub fn render_with_stats(scene: Scene, settings: &RenderSettings, spp: u32) -> (Film, RenderStats) {
-    let context = RenderContext::new(scene, settings.clone());
+    let mut context = RenderContext::new(scene, settings.clone());
+    // as `lumiere render` does: the pilot, if the settings ask for it
+    choose_continuations(&mut context);
     let mut film = Film::new(settings.width, settings.height);
     let stats = render(&context, &mut film, Budget::Samples(spp), |_| {});
     assert_no_invalid_samples(&stats.rays);

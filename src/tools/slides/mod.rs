@@ -383,8 +383,13 @@ pub fn settings_summary(view: &StepView) -> String {
     );
     changed(
         "indirect_samples",
-        s.indirect_samples != d.indirect_samples,
-        s.indirect_samples.to_string(),
+        (s.auto_indirect_samples, s.indirect_samples)
+            != (d.auto_indirect_samples, d.indirect_samples),
+        if s.auto_indirect_samples {
+            "auto".into()
+        } else {
+            s.indirect_samples.to_string()
+        },
     );
     changed("sampler", s.sampler != d.sampler, s.sampler.to_string());
     changed(

@@ -139,7 +139,7 @@ fn the_summary_names_what_a_step_changes_and_the_index_lists_every_slide() {
     let summary = settings_summary(&view);
     assert_eq!(
         summary,
-        "scene cornell, terms L2, sampler sobol, exposure +2 EV · 64 spp, seed 0"
+        "scene cornell, terms L2, exposure +2 EV · 64 spp, seed 0"
     );
     let layout = SlideLayout::new(1920, 1080);
     let entries: Vec<IndexEntry> = (0..lesson.steps.len())
