@@ -16,6 +16,7 @@ use cli::bench::BenchArgs;
 use cli::lesson::LessonArgs;
 use cli::lessons::LessonsArgs;
 use cli::render::RenderArgs;
+use cli::serve::ServeArgs;
 use cli::stress::StressArgs;
 use cli::strip::StripArgs;
 use cli::view::ViewArgs;
@@ -52,6 +53,8 @@ enum Command {
     Lessons(LessonsArgs),
     /// Export a lesson as slides: each step rendered with its title, formula and caption (PNG, GIF with --gif), and an index.md.
     Lesson(LessonArgs),
+    /// Serve the web build's folder (`bash .ci/build-web OUT`) on 127.0.0.1, with the headers its threads need.
+    Serve(ServeArgs),
 }
 
 fn main() -> ExitCode {
@@ -63,6 +66,7 @@ fn main() -> ExitCode {
         Some(Command::Bench(args)) => cli::bench::run(&args),
         Some(Command::Lessons(args)) => cli::lessons::run(&args),
         Some(Command::Lesson(args)) => cli::lesson::run(&args),
+        Some(Command::Serve(args)) => cli::serve::run(&args),
         None => cli::view::run(ViewArgs::defaults(), true),
     };
     match result {

@@ -8,6 +8,7 @@ pub mod lessons;
 pub mod options;
 pub mod parsers;
 pub mod render;
+pub mod serve;
 pub mod stress;
 pub mod strip;
 pub mod view;
