@@ -15,6 +15,7 @@
 //! | [`analysis`] | error metrics, convergence, noise views, the probe, the path view |
 //! | [`lesson`] | the course's lessons: steps of settings, titles, formulas, captions |
 //! | [`tools`] | `lumiere bench`, `stress`, `strip` and the slides of `lesson --export` |
+//! | [`platform`] | what differs in the browser: the clock, threads |
 //! | `app` | the viewer (feature `gui`) |
 //!
 //! Rendering one term of a scene whose answer is known — the furnace, a
@@ -38,6 +39,7 @@ pub mod analysis;
 pub mod app;
 pub mod geometry;
 pub mod lesson;
+pub mod platform;
 pub mod render;
 pub mod scene;
 pub mod tools;

@@ -2,61 +2,29 @@
 //! cross-origin-isolation headers, their media types, and nothing outside
 //! the folder.
 
-use std::io::{BufRead, BufReader, Read, Write};
+use std::io::{Read, Write};
 use std::net::TcpStream;
-use std::process::{Child, Command, Stdio};
+use std::process::Command;
 
-/// A running `lumiere serve` and its port; stopped when dropped.
-struct Server {
-    child: Child,
-    port: u16,
-}
+mod common;
 
-impl Server {
-    fn start(folder: &std::path::Path) -> Self {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_lumiere"))
-            .args(["serve", "--port", "0"])
-            .arg(folder)
-            .stdout(Stdio::piped())
-            .spawn()
-            .unwrap();
-        let mut line = String::new();
-        BufReader::new(child.stdout.take().unwrap())
-            .read_line(&mut line)
-            .unwrap();
-        // "serving DIR at http://127.0.0.1:PORT/ (Ctrl+C stops)"
-        let port = line
-            .split("127.0.0.1:")
-            .nth(1)
-            .and_then(|rest| rest.split('/').next())
-            .and_then(|port| port.parse().ok())
-            .unwrap_or_else(|| panic!("no port in {line:?}"));
-        Self { child, port }
-    }
+use common::Served;
 
-    /// The status line and headers (lower-case names) and the body of `method target`.
-    fn get(&self, method: &str, target: &str) -> (String, Vec<(String, String)>, Vec<u8>) {
-        let mut stream = TcpStream::connect(("127.0.0.1", self.port)).unwrap();
-        write!(stream, "{method} {target} HTTP/1.1\r\nHost: x\r\n\r\n").unwrap();
-        let mut answer = Vec::new();
-        stream.read_to_end(&mut answer).unwrap();
-        let split = answer.windows(4).position(|w| w == b"\r\n\r\n").unwrap();
-        let head = String::from_utf8(answer[..split].to_vec()).unwrap();
-        let mut lines = head.lines();
-        let status = lines.next().unwrap().to_string();
-        let headers = lines
-            .filter_map(|l| l.split_once(": "))
-            .map(|(k, v)| (k.to_lowercase(), v.to_string()))
-            .collect();
-        (status, headers, answer[split + 4..].to_vec())
-    }
-}
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
+/// The status line and headers (lower-case names) and the body of `method target`.
+fn get(server: &Served, method: &str, target: &str) -> (String, Vec<(String, String)>, Vec<u8>) {
+    let mut stream = TcpStream::connect(("127.0.0.1", server.port)).unwrap();
+    write!(stream, "{method} {target} HTTP/1.1\r\nHost: x\r\n\r\n").unwrap();
+    let mut answer = Vec::new();
+    stream.read_to_end(&mut answer).unwrap();
+    let split = answer.windows(4).position(|w| w == b"\r\n\r\n").unwrap();
+    let head = String::from_utf8(answer[..split].to_vec()).unwrap();
+    let mut lines = head.lines();
+    let status = lines.next().unwrap().to_string();
+    let headers = lines
+        .filter_map(|l| l.split_once(": "))
+        .map(|(k, v)| (k.to_lowercase(), v.to_string()))
+        .collect();
+    (status, headers, answer[split + 4..].to_vec())
 }
 
 fn header<'a>(headers: &'a [(String, String)], name: &str) -> Option<&'a str> {
@@ -74,9 +42,9 @@ fn the_site_is_served_cross_origin_isolated_and_confined_to_its_folder() {
     std::fs::write(site.join("index.html"), "<!doctype html><p>lumiere</p>").unwrap();
     std::fs::write(site.join("pkg/lumiere_bg.wasm"), b"\0asm\x01\0\0\0").unwrap();
     std::fs::write(root.join("secret.txt"), "outside").unwrap();
-    let server = Server::start(&site);
+    let server = Served::start(&site);
 
-    let (status, headers, body) = server.get("GET", "/");
+    let (status, headers, body) = get(&server, "GET", "/");
     assert_eq!(status, "HTTP/1.1 200 OK");
     assert_eq!(body, b"<!doctype html><p>lumiere</p>");
     assert_eq!(
@@ -92,12 +60,12 @@ fn the_site_is_served_cross_origin_isolated_and_confined_to_its_folder() {
         Some("require-corp")
     );
 
-    let (status, headers, body) = server.get("GET", "/pkg/lumiere_bg.wasm?v=1");
+    let (status, headers, body) = get(&server, "GET", "/pkg/lumiere_bg.wasm?v=1");
     assert_eq!(status, "HTTP/1.1 200 OK");
     assert_eq!(header(&headers, "content-type"), Some("application/wasm"));
     assert_eq!(body.len(), 8);
 
-    let (status, headers, body) = server.get("HEAD", "/index.html");
+    let (status, headers, body) = get(&server, "HEAD", "/index.html");
     assert_eq!(status, "HTTP/1.1 200 OK");
     assert_eq!(header(&headers, "content-length"), Some("29"));
     assert!(body.is_empty());
@@ -108,11 +76,11 @@ fn the_site_is_served_cross_origin_isolated_and_confined_to_its_folder() {
         "/pkg/../../secret.txt",
         "/missing.js",
     ] {
-        let (status, _, body) = server.get("GET", outside);
+        let (status, _, body) = get(&server, "GET", outside);
         assert_eq!(status, "HTTP/1.1 404 Not Found", "{outside}");
         assert!(!String::from_utf8_lossy(&body).contains("outside"));
     }
-    let (status, _, _) = server.get("POST", "/");
+    let (status, _, _) = get(&server, "POST", "/");
     assert_eq!(status, "HTTP/1.1 405 Method Not Allowed");
     drop(server);
     std::fs::remove_dir_all(&root).unwrap();

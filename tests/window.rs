@@ -13,6 +13,10 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
+mod common;
+
+use common::screen_difference;
+
 fn lumiere() -> Command {
     Command::new(env!("CARGO_BIN_EXE_lumiere"))
 }
@@ -144,33 +148,6 @@ fn run_viewer(display: &Display, args: &[&str], shot: &Path) -> String {
     stderr
 }
 
-/// The largest and the mean difference (8-bit levels) between the image
-/// at `rect` [x, y, w, h] of `window` and `expected`, over the film rows
-/// `rows` (sampled at each film pixel's centre).
-fn difference(
-    window: &image::RgbImage,
-    [x, y, w, h]: [u32; 4],
-    expected: &image::RgbImage,
-    rows: std::ops::Range<u32>,
-) -> (i32, f64) {
-    let (mut worst, mut total, mut count) = (0i32, 0i64, 0i64);
-    for j in rows {
-        for i in 0..expected.width() {
-            let sx = x + ((i as f32 + 0.5) * w as f32 / expected.width() as f32) as u32;
-            let sy = y + ((j as f32 + 0.5) * h as f32 / expected.height() as f32) as u32;
-            let shown = window.get_pixel(sx, sy).0;
-            let want = expected.get_pixel(i, j).0;
-            for c in 0..3 {
-                let d = (shown[c] as i32 - want[c] as i32).abs();
-                worst = worst.max(d);
-                total += d as i64;
-                count += 1;
-            }
-        }
-    }
-    (worst, total as f64 / count as f64)
-}
-
 /// The built-in lesson opened on step 3 (L2 alone, +2 EV) in a real window:
 /// between the title band and the caption band the image is what
 /// `lumiere render` gives with the step's settings.
@@ -237,7 +214,7 @@ fn the_lesson_opens_on_a_step_in_a_real_window() {
     let window = load_rgb(&shot);
     let expected = load_rgb(&reference);
     // the middle third of the image, clear of the title and caption bands
-    let (worst, mean) = difference(&window, image_rect(&stderr), &expected, 40..80);
+    let (worst, mean) = screen_difference(&window, image_rect(&stderr), &expected, 40..80);
     assert!(
         worst <= 2 && mean < 0.5,
         "the lesson's image differs from the render: worst {worst}/255, mean {mean:.3}"
@@ -250,7 +227,7 @@ fn the_lesson_opens_on_a_step_in_a_real_window() {
     let layout = lumiere::tools::slides::SlideLayout::new(640, 360);
     let image = layout.image;
     let rect = [image.x, image.y, image.width, image.height];
-    let (worst, mean) = difference(&picture, rect, &expected, 0..expected.height());
+    let (worst, mean) = screen_difference(&picture, rect, &expected, 0..expected.height());
     assert!(
         worst <= 1 && mean < 0.1,
         "the saved picture differs from the render: worst {worst}/255, mean {mean:.3}"
@@ -313,7 +290,7 @@ fn viewer_screenshot_matches_the_command_line_render() {
     );
 
     // the displayed image at each film pixel's centre
-    let (worst, mean) = difference(&window, [x, y, w, h], &expected, 0..expected.height());
+    let (worst, mean) = screen_difference(&window, [x, y, w, h], &expected, 0..expected.height());
     // the same radiance goes through the shader's 8-bit sRGB encoding and the
     // export's: the two may round a channel to neighbouring levels (1), and
     // a texel sampled at a pixel's edge may blend with its neighbour (2 at

@@ -19,10 +19,10 @@
 
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::sync::{Arc, Weak};
-use std::thread::JoinHandle;
 
 use crate::analysis::convergence::EstimatorKey;
 use crate::analysis::metrics::ReferenceImage;
+use crate::platform::threads::{self, Job};
 use crate::render::context::RenderContext;
 use crate::render::film::Film;
 use crate::render::progressive::ImageSource;
@@ -154,7 +154,7 @@ pub struct ReferenceCapture {
     target: u32,
     done: Arc<AtomicU32>,
     cancel: Arc<AtomicBool>,
-    thread: Option<JoinHandle<Option<ReferenceImage>>>,
+    thread: Option<Job<Option<ReferenceImage>>>,
 }
 
 impl ReferenceCapture {
@@ -164,17 +164,14 @@ impl ReferenceCapture {
         let cancel = Arc::new(AtomicBool::new(false));
         let (key, target) = (job.key(), job.samples_per_pixel);
         let (thread_done, thread_cancel) = (Arc::clone(&done), Arc::clone(&cancel));
-        let thread = std::thread::Builder::new()
-            .name("lumiere reference".into())
-            .spawn(move || {
-                let image = job.run(&thread_cancel, |spp| {
-                    thread_done.store(spp, Ordering::Relaxed);
-                    repaint();
-                });
+        let thread = threads::spawn("lumiere reference", move || {
+            let image = job.run(&thread_cancel, |spp| {
+                thread_done.store(spp, Ordering::Relaxed);
                 repaint();
-                image
-            })
-            .expect("cannot start the reference thread");
+            });
+            repaint();
+            image
+        });
         Self {
             key,
             target,
@@ -200,7 +197,7 @@ impl ReferenceCapture {
     /// Waits for the end: the reference and what it is valid for, `None` if
     /// cancelled.
     pub fn join(mut self) -> Option<(ReferenceImage, ReferenceKey)> {
-        let image = self.thread.take()?.join().ok()??;
+        let image = self.thread.take()?.join()??;
         Some((image, self.key.clone()))
     }
 }

@@ -6,7 +6,9 @@
 //! records how long each UI frame takes to build (`ui()` on the UI thread) and
 //! the interval between frames. When done it prints the figures and closes.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use crate::platform::time::Instant;
 
 use crate::render::progressive::Snapshot;
 use crate::render::settings::BrdfOverride;

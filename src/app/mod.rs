@@ -22,6 +22,9 @@ mod source_quality;
 pub mod split;
 pub mod thumbnails;
 mod viewport;
+mod waker;
+#[cfg(target_arch = "wasm32")]
+pub mod web;
 
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
@@ -176,7 +179,7 @@ pub struct LumiereApp {
     pub zoom: Option<u32>,
     /// Offset of the zoomed image from the centre, in points.
     pub pan: egui::Vec2,
-    exports: Vec<std::thread::JoinHandle<Result<String, String>>>,
+    exports: Vec<crate::platform::threads::Job<Result<String, String>>>,
     /// The converged image errors are measured against (and differences drawn from).
     pub reference: Option<Arc<ReferenceImage>>,
     /// What the reference is valid for, its capture, the errors and curves.
@@ -237,7 +240,7 @@ impl LumiereApp {
             state.shown_size = size;
         }
         if let Some(render_state) = &cc.wgpu_render_state {
-            display::BlitResources::install(render_state);
+            display::install(render_state);
         }
         install_fonts(&cc.egui_ctx);
         let scene = Arc::new(builtin::load(&options.scene).map_err(|e| e.to_string())?);
@@ -256,7 +259,8 @@ impl LumiereApp {
             term_images: false,
             film: 0,
         };
-        let renderer = ProgressiveRenderer::spawn(request.clone(), move || ctx.request_repaint());
+        let waker = waker::Waker::new(&ctx);
+        let renderer = ProgressiveRenderer::spawn(request.clone(), move || waker.wake());
         let mut probe = probe_view::ProbeState::default();
         probe.path.sample = options.probe_sample;
         if let Some((x, y)) = options.probe {
@@ -331,10 +335,10 @@ impl LumiereApp {
     /// on `threads` threads of its own or on all cores.
     fn respawn_renderer(&mut self, ctx: &egui::Context, threads: Option<usize>) {
         let request = self.view_request();
-        let repaint = ctx.clone();
+        let repaint = waker::Waker::new(ctx);
         self.renderer =
             ProgressiveRenderer::spawn_with_threads(request.clone(), threads, move || {
-                repaint.request_repaint()
+                repaint.wake()
             });
         self.sent = request;
         self.renderer_serial = self.next_renderer_serial();
@@ -469,6 +473,16 @@ impl LumiereApp {
             return;
         }
         let Some(path) = self.screenshot.clone() else {
+            // a page cannot close itself: it says so on its console, once
+            #[cfg(target_arch = "wasm32")]
+            if !self.window_shot_requested {
+                self.window_shot_requested = true;
+                web::report_reached(
+                    snapshot,
+                    self.image_rect.map(|r| r * ctx.pixels_per_point()),
+                );
+            }
+            #[cfg(not(target_arch = "wasm32"))]
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
             return;
         };
@@ -527,7 +541,7 @@ impl LumiereApp {
         &mut self,
         ctx: &egui::Context,
         snapshot: &Snapshot,
-        started: std::time::Instant,
+        started: crate::platform::time::Instant,
     ) {
         let Some(bench) = &mut self.bench else {
             return;
@@ -573,7 +587,10 @@ impl LumiereApp {
             per_term_exr: self.state.per_term_exr,
             sidecar: self.sidecar(),
         };
-        self.exports.push(std::thread::spawn(move || job.run()));
+        self.exports.push(crate::platform::threads::spawn(
+            "lumiere export",
+            move || job.run(),
+        ));
         self.message = Some("saving…".into());
     }
 
@@ -604,9 +621,9 @@ impl LumiereApp {
         self.exports = running;
         for handle in finished {
             self.message = Some(match handle.join() {
-                Ok(Ok(done)) => done,
-                Ok(Err(e)) => format!("error: {e}"),
-                Err(_) => "error: the export failed".into(),
+                Some(Ok(done)) => done,
+                Some(Err(e)) => format!("error: {e}"),
+                None => "error: the export failed".into(),
             });
         }
     }
@@ -628,11 +645,12 @@ impl LumiereApp {
 
 impl eframe::App for LumiereApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
-        let started = std::time::Instant::now();
+        let started = crate::platform::time::Instant::now();
         if let Some(bench) = &mut self.bench {
             bench.frame_started(started);
         }
         let ctx = ui.ctx().clone();
+        waker::poll(&ctx);
         self.dropped_files(&ctx);
         self.collect_exports();
         panels::shortcuts(self, &ctx);
@@ -725,6 +743,7 @@ fn same_request(a: &ViewRequest, b: &ViewRequest) -> bool {
 }
 
 /// Opens the viewer window and runs until it is closed.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn run(options: ViewOptions) -> Result<(), String> {
     let native_options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()

@@ -6,8 +6,7 @@
 //! and draws the colour bar with its ticks, unit and mode.
 
 use std::sync::{Arc, Mutex};
-use std::thread::JoinHandle;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use eframe::egui;
 
@@ -15,6 +14,8 @@ use crate::analysis::metrics::ReferenceImage;
 use crate::analysis::noise::{
     self, DisplayMode, FalseColour, NO_VALUE_SRGB, NoiseSource, NoiseView, Scale, format_tick,
 };
+use crate::platform::threads::{self, Job};
+use crate::platform::time::Instant;
 use crate::render::film::Film;
 use crate::render::settings::TermSet;
 
@@ -37,7 +38,7 @@ type Outcome = Result<(FalseColour, Duration), String>;
 #[derive(Default)]
 pub struct NoiseViewState {
     shown: Option<(Inputs, u64, Arc<FalseColour>)>,
-    job: Option<(Inputs, JoinHandle<Outcome>)>,
+    job: Option<(Inputs, Job<Outcome>)>,
     serial: u64,
     /// Why the view cannot be shown (e.g. the reference's size differs).
     pub problem: Option<String>,
@@ -64,17 +65,17 @@ impl NoiseViewState {
             && let Some((inputs, handle)) = self.job.take()
         {
             match handle.join() {
-                Ok(Ok((image, duration))) => {
+                Some(Ok((image, duration))) => {
                     self.serial += 1;
                     self.shown = Some((inputs, self.serial, Arc::new(image)));
                     self.last_duration = Some(duration);
                     self.problem = None;
                 }
-                Ok(Err(problem)) => {
+                Some(Err(problem)) => {
                     self.shown = None;
                     self.problem = Some(problem);
                 }
-                Err(_) => self.problem = Some("the noise view failed".into()),
+                None => self.problem = Some("the noise view failed".into()),
             }
         }
         if view.mode == DisplayMode::Image {
@@ -96,27 +97,24 @@ impl NoiseViewState {
             return;
         };
         let reference = reference.cloned();
-        let repaint = ctx.clone();
-        let job = std::thread::Builder::new()
-            .name("lumiere noise view".into())
-            .spawn(move || {
-                let started = Instant::now();
-                // the lock is held for the values only: the worker waits little
-                let values = {
-                    let film = film.lock().unwrap_or_else(|p| p.into_inner());
-                    noise::noise_values(&film, visible, view, reference.as_deref())
-                        .map(|values| (film.width, film.height, values))
-                };
-                let outcome = values
-                    .map(|(width, height, values)| {
-                        let image = noise::colour_values(width, height, view, values);
-                        (image, started.elapsed())
-                    })
-                    .map_err(|e| e.to_string());
-                repaint.request_repaint();
-                outcome
-            })
-            .expect("cannot start a thread");
+        let repaint = super::waker::Waker::new(ctx);
+        let job = threads::spawn("lumiere noise view", move || {
+            let started = Instant::now();
+            // the lock is held for the values only: the worker waits little
+            let values = {
+                let film = film.lock().unwrap_or_else(|p| p.into_inner());
+                noise::noise_values(&film, visible, view, reference.as_deref())
+                    .map(|values| (film.width, film.height, values))
+            };
+            let outcome = values
+                .map(|(width, height, values)| {
+                    let image = noise::colour_values(width, height, view, values);
+                    (image, started.elapsed())
+                })
+                .map_err(|e| e.to_string());
+            repaint.wake();
+            outcome
+        });
         self.job = Some((inputs, job));
     }
 

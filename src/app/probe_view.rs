@@ -13,8 +13,7 @@
 //! [`REFRESH_INTERVAL`].
 
 use std::sync::{Arc, Mutex};
-use std::thread::JoinHandle;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use eframe::egui;
 use egui_plot::{Bar, BarChart, Plot, VLine};
@@ -23,6 +22,8 @@ use crate::analysis::path_view::{
     self, PathLine, PathSample, RayRole, path_lines, segment_luminance,
 };
 use crate::analysis::probe::{FilmPixel, MAX_PROBE_SAMPLES, PixelProbe, TermProbe, trace_pixel};
+use crate::platform::threads::{self, Job};
+use crate::platform::time::Instant;
 use crate::render::context::RenderContext;
 use crate::render::film::Film;
 use crate::render::progressive::ViewRequest;
@@ -105,7 +106,7 @@ pub struct ProbeState {
     /// The pixel picked last; `None`: no probe.
     pub pixel: Option<(u32, u32)>,
     pub result: Option<Arc<ProbeResult>>,
-    job: Option<JoinHandle<Option<ProbeResult>>>,
+    job: Option<Job<Option<ProbeResult>>>,
     /// Film generation and spp the last job was started for.
     started_for: Option<((u32, u32), u64)>,
     started_at: Option<Instant>,
@@ -226,7 +227,7 @@ impl ProbeState {
         if self.job.as_ref().is_some_and(|j| j.is_finished())
             && let Some(job) = self.job.take()
         {
-            let result = job.join().ok().flatten();
+            let result = job.join().flatten();
             // a result for a pixel picked since is dropped
             if let Some(result) = result.filter(|r| Some((r.probe.x, r.probe.y)) == self.pixel) {
                 self.result = Some(Arc::new(result));
@@ -256,19 +257,14 @@ impl ProbeState {
         };
         let request = request.clone();
         let cache = Arc::clone(&self.cache);
-        let repaint = ctx.clone();
+        let repaint = super::waker::Waker::new(ctx);
         self.started_for = Some((pixel, generation));
         self.started_at = Some(Instant::now());
-        self.job = Some(
-            std::thread::Builder::new()
-                .name("lumiere probe".into())
-                .spawn(move || {
-                    let result = run_probe(&request, &film, &cache, pixel, continuations);
-                    repaint.request_repaint();
-                    result
-                })
-                .expect("cannot start a thread"),
-        );
+        self.job = Some(threads::spawn("lumiere probe", move || {
+            let result = run_probe(&request, &film, &cache, pixel, continuations);
+            repaint.wake();
+            result
+        }));
     }
 }
 

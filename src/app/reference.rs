@@ -8,7 +8,9 @@
 
 use std::path::Path;
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use crate::platform::time::Instant;
 
 use eframe::egui;
 use glam::Vec3;
@@ -125,10 +127,8 @@ pub fn start_capture(app: &mut LumiereApp, ctx: &egui::Context) {
         &app.state.settings,
         app.errors.capture_spp,
     );
-    let repaint = ctx.clone();
-    app.errors.capture = Some(ReferenceCapture::spawn(job, move || {
-        repaint.request_repaint()
-    }));
+    let repaint = super::waker::Waker::new(ctx);
+    app.errors.capture = Some(ReferenceCapture::spawn(job, move || repaint.wake()));
     app.message = Some("capturing a reference…".into());
 }
 

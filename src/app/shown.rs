@@ -6,13 +6,13 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::thread::JoinHandle;
 
 use eframe::egui;
 
 use super::{LumiereApp, four_up_view, split};
 use crate::analysis::noise::FalseColour;
 use crate::analysis::path_view::PathLine;
+use crate::platform::threads::{self, Job};
 use crate::render::four_up::TILES;
 use crate::render::progressive::Snapshot;
 use crate::render::settings::DisplaySettings;
@@ -187,7 +187,8 @@ pub fn save_as_shown(app: &mut LumiereApp) {
     let folder = PathBuf::from(&app.state.export_dir);
     match job(app, Target::Folder(folder), app.state.shown_size) {
         Ok(job) => {
-            app.exports.push(std::thread::spawn(move || job.run()));
+            app.exports
+                .push(threads::spawn("lumiere export", move || job.run()));
             app.message = Some("saving…".into());
         }
         Err(e) => app.message = Some(format!("error: {e}")),
@@ -201,7 +202,7 @@ pub enum ScriptShown {
     #[default]
     Done,
     Pending(PathBuf),
-    Running(JoinHandle<Result<String, String>>),
+    Running(Job<Result<String, String>>),
 }
 
 /// Scripted runs, once the image is final: writes the `--save-as-shown`
@@ -210,7 +211,10 @@ pub fn script_step(app: &mut LumiereApp, ctx: &egui::Context) -> bool {
     match std::mem::take(&mut app.script_shown) {
         ScriptShown::Done => return true,
         ScriptShown::Pending(path) => match job(app, Target::File(path), app.state.shown_size) {
-            Ok(job) => app.script_shown = ScriptShown::Running(std::thread::spawn(|| job.run())),
+            Ok(job) => {
+                app.script_shown =
+                    ScriptShown::Running(threads::spawn("lumiere export", || job.run()))
+            }
             Err(e) => {
                 app.script_failed(e);
                 return true;
@@ -218,9 +222,9 @@ pub fn script_step(app: &mut LumiereApp, ctx: &egui::Context) -> bool {
         },
         ScriptShown::Running(handle) if handle.is_finished() => {
             match handle.join() {
-                Ok(Ok(done)) => eprintln!("{done}"),
-                Ok(Err(e)) => app.script_failed(e),
-                Err(_) => app.script_failed("the picture could not be written".into()),
+                Some(Ok(done)) => eprintln!("{done}"),
+                Some(Err(e)) => app.script_failed(e),
+                None => app.script_failed("the picture could not be written".into()),
             }
             return true;
         }

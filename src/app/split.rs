@@ -90,7 +90,7 @@ impl Compare {
 
 /// Threads per renderer when two share the machine.
 fn threads_each() -> usize {
-    std::thread::available_parallelism().map_or(1, |n| (n.get() / 2).max(1))
+    (crate::platform::threads::available() / 2).max(1)
 }
 
 /// B's settings: A's with B's changes, and the next seed.
@@ -137,11 +137,11 @@ pub fn restart(app: &mut LumiereApp, ctx: &egui::Context) {
     app.compare.started_with = None;
     if compare {
         let request = request_b(app);
-        let repaint = ctx.clone();
+        let repaint = super::waker::Waker::new(ctx);
         app.compare.renderer = Some(ProgressiveRenderer::spawn_with_threads(
             request.clone(),
             Some(threads_each()),
-            move || repaint.request_repaint(),
+            move || repaint.wake(),
         ));
         app.compare.serial = app.next_renderer_serial();
         app.compare.sent = Some(request);

@@ -7,6 +7,7 @@ use std::sync::mpsc::{Receiver, channel};
 
 use eframe::egui;
 
+use crate::platform::threads;
 use crate::render::context::RenderContext;
 use crate::render::export::to_srgb8;
 use crate::render::film::Film;
@@ -30,7 +31,7 @@ impl Thumbnails {
     pub fn get(&mut self, ctx: &egui::Context, index: usize) -> Option<&egui::TextureHandle> {
         if self.textures.is_empty() {
             self.textures = vec![None; SCENES.len()];
-            self.arriving = Some(start(ctx.clone()));
+            self.arriving = Some(start(super::waker::Waker::new(ctx)));
         }
         if let Some(arriving) = &self.arriving {
             while let Ok((i, image)) = arriving.try_recv() {
@@ -49,25 +50,20 @@ impl Thumbnails {
 
 /// Renders every built-in scene's thumbnail on a thread of its own, one
 /// after the other, sending each as it is done.
-fn start(ctx: egui::Context) -> Receiver<(usize, egui::ColorImage)> {
+fn start(waker: super::waker::Waker) -> Receiver<(usize, egui::ColorImage)> {
     let (send, receive) = channel();
-    let spawned = std::thread::Builder::new()
-        .name("thumbnails".into())
-        .spawn(move || {
-            for (index, scene) in SCENES.iter().enumerate() {
-                let Some(image) = thumbnail(scene.name) else {
-                    continue;
-                };
-                if send.send((index, image)).is_err() {
-                    return; // the viewer is gone
-                }
-                ctx.request_repaint();
+    // the job ends with the list; nobody waits for it
+    let _job = threads::spawn("thumbnails", move || {
+        for (index, scene) in SCENES.iter().enumerate() {
+            let Some(image) = thumbnail(scene.name) else {
+                continue;
+            };
+            if send.send((index, image)).is_err() {
+                return; // the viewer is gone
             }
-        });
-    if spawned.is_err() {
-        // no thread, no thumbnails: the list still names and describes the scenes
-        return channel().1;
-    }
+            waker.wake();
+        }
+    });
     receive
 }
 
@@ -83,11 +79,8 @@ pub fn thumbnail(name: &str) -> Option<egui::ColorImage> {
     let context = RenderContext::new(scene, settings.clone());
     let mut film = Film::new(settings.width, settings.height);
     // one thread: the viewer's own render keeps the cores
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .ok()?;
-    pool.install(|| {
+    let pool = threads::pool(1, "thumbnail");
+    threads::install(pool.as_ref(), || {
         render(
             &context,
             &mut film,

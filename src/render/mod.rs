@@ -19,7 +19,9 @@ pub mod settings_override;
 pub mod sidecar;
 
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use crate::platform::time::Instant;
 
 use glam::Vec3;
 use rayon::prelude::*;

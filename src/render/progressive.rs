@@ -27,10 +27,12 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard, Weak};
-use std::thread::JoinHandle;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use crate::platform::time::Instant;
 
 use crate::geometry::camera::CameraRays;
+use crate::platform::threads::{self, Job};
 use crate::render::context::RenderContext;
 use crate::render::film::Film;
 use crate::render::settings::{RenderSettings, Term, TermSet};
@@ -143,14 +145,12 @@ struct Shared {
 /// The handle of a render worker thread; dropping it stops the thread.
 pub struct ProgressiveRenderer {
     shared: Arc<Shared>,
-    thread: Option<JoinHandle<()>>,
+    thread: Option<Job<()>>,
 }
 
 fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
     // a panic elsewhere must not take the viewer down with a poisoned lock
-    mutex
-        .lock()
-        .unwrap_or_else(|poisoned| poisoned.into_inner())
+    threads::lock(mutex)
 }
 
 impl ProgressiveRenderer {
@@ -177,21 +177,11 @@ impl ProgressiveRenderer {
             film: Mutex::new(None),
         });
         let worker_shared = Arc::clone(&shared);
-        let thread = std::thread::Builder::new()
-            .name("lumiere render".into())
-            .spawn(move || {
-                let worker = Worker::new(worker_shared, Box::new(repaint));
-                match threads {
-                    None => worker.run(),
-                    Some(threads) => rayon::ThreadPoolBuilder::new()
-                        .num_threads(threads.max(1))
-                        .thread_name(|i| format!("lumiere render {i}"))
-                        .build()
-                        .expect("cannot start the render threads")
-                        .install(|| worker.run()),
-                }
-            })
-            .expect("cannot start the render thread");
+        let thread = threads::spawn("lumiere render", move || {
+            let worker = Worker::new(worker_shared, Box::new(repaint));
+            let pool = threads.and_then(|threads| threads::pool(threads, "lumiere render"));
+            threads::install(pool.as_ref(), || worker.run());
+        });
         Self {
             shared,
             thread: Some(thread),
@@ -222,6 +212,7 @@ impl Drop for ProgressiveRenderer {
         lock(&self.shared.mailbox).quit = true;
         self.shared.cancel.store(true, Ordering::Relaxed);
         self.shared.wake.notify_one();
+        // (in the browser the worker ends on its own: the page may not wait)
         if let Some(thread) = self.thread.take() {
             let _ = thread.join();
         }

@@ -285,3 +285,67 @@ pub fn assert_close(actual: Vec3, expected: Vec3) {
         "{actual} is not {expected}"
     );
 }
+
+/// Worst and mean difference (8-bit codes) between a screenshot's image in
+/// `rect` ([x, y, width, height], screenshot pixels), sampled at each film
+/// pixel's centre, and `expected`, over `rows` of `expected`.
+pub fn screen_difference(
+    screen: &image::RgbImage,
+    [x, y, w, h]: [u32; 4],
+    expected: &image::RgbImage,
+    rows: std::ops::Range<u32>,
+) -> (i32, f64) {
+    let (mut worst, mut total, mut count) = (0i32, 0i64, 0i64);
+    for j in rows {
+        for i in 0..expected.width() {
+            let sx = x + ((i as f32 + 0.5) * w as f32 / expected.width() as f32) as u32;
+            let sy = y + ((j as f32 + 0.5) * h as f32 / expected.height() as f32) as u32;
+            let shown = screen.get_pixel(sx, sy).0;
+            let want = expected.get_pixel(i, j).0;
+            for c in 0..3 {
+                let d = (shown[c] as i32 - want[c] as i32).abs();
+                worst = worst.max(d);
+                total += d as i64;
+                count += 1;
+            }
+        }
+    }
+    (worst, total as f64 / count as f64)
+}
+
+/// `lumiere serve FOLDER` on a free port of 127.0.0.1; stopped when dropped.
+pub struct Served {
+    child: std::process::Child,
+    pub port: u16,
+}
+
+impl Served {
+    pub fn start(folder: &Path) -> Self {
+        use std::io::BufRead;
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_lumiere"))
+            .args(["serve", "--port", "0"])
+            .arg(folder)
+            .stdout(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        let mut line = String::new();
+        std::io::BufReader::new(child.stdout.take().unwrap())
+            .read_line(&mut line)
+            .unwrap();
+        // "serving DIR at http://127.0.0.1:PORT/ (Ctrl+C stops)"
+        let port = line
+            .split("127.0.0.1:")
+            .nth(1)
+            .and_then(|rest| rest.split('/').next())
+            .and_then(|port| port.parse().ok())
+            .unwrap_or_else(|| panic!("no port in {line:?}"));
+        Self { child, port }
+    }
+}
+
+impl Drop for Served {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}

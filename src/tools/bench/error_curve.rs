@@ -27,9 +27,9 @@
 //! estimator's 4096 spp left the reference a relMSE near 4·10⁻³, and no curve
 //! could reach 10⁻³.
 
+use crate::platform::time::Instant;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::Instant;
 
 use crate::analysis::capture::{radiance_settings, reference_seed};
 use crate::analysis::metrics::{ReferenceImage, image_error};

@@ -10,6 +10,7 @@ use std::sync::Once;
 use plotters::backend::BitMapBackend;
 use plotters::prelude::*;
 
+#[cfg(not(target_arch = "wasm32"))]
 use crate::tools::font::HACK_REGULAR;
 
 use super::BenchError;
@@ -24,6 +25,8 @@ fn register_font() {
     static REGISTER: Once = Once::new();
     REGISTER.call_once(|| {
         // the embedded font is valid: a failure would only leave labels out
+        // (the bench does not run in the browser, where plotters has no fonts)
+        #[cfg(not(target_arch = "wasm32"))]
         let _ = plotters::style::register_font(FAMILY, FontStyle::Normal, HACK_REGULAR);
     });
 }

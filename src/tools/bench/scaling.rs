@@ -13,10 +13,10 @@
 //! divided by the triangle count. Without the counting allocator (in the
 //! tests) the memory columns are empty.
 
+use crate::platform::time::Instant;
 use std::fmt;
 use std::path::Path;
 use std::sync::Arc;
-use std::time::Instant;
 
 use glam::Vec3;
 use serde::Serialize;

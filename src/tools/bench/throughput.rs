@@ -21,7 +21,9 @@
 //! traversal ([`Accel::bvh_only`]), the yardstick of the target: the row
 //! `cwbvh`, and `Throughput::bvh_ratio`.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use crate::platform::time::Instant;
 
 use rayon::prelude::*;
 use serde::Serialize;

@@ -37,8 +37,8 @@ mod sphere_leaks;
 
 use strum::{Display, EnumIter, EnumString, IntoStaticStr};
 
+use crate::platform::time::Instant;
 use crate::render::settings::unknown_choice;
-use std::time::Instant;
 
 pub use cases::case_scene;
 pub use report::{CaseReport, Mean, NOISELESS_TOLERANCE, Z_LIMIT, table, term_mean};

@@ -29,11 +29,11 @@
 //! The image is display-referred (the PNG export's exposure, tonemap, sRGB):
 //! labels are pixels, so a strip is written as PNG only.
 
+use crate::platform::time::Instant;
 use std::fmt;
 use std::path::Path;
 use std::str::FromStr;
 use std::sync::Arc;
-use std::time::Instant;
 
 use ab_glyph::{Font, GlyphId, PxScale, ScaleFont, point};
 use image::{ImageBuffer, Rgb};
