@@ -42,15 +42,27 @@ fn scratch(name: &str) -> PathBuf {
     dir.join(name)
 }
 
-/// Opens `query` on the served page; the console's lines, after checking
-/// that the page reached its samples and logged no error.
-fn open_page(server: &Served, modules: &Path, query: &str, screenshot: &Path) -> String {
+/// Opens `query` on the served page, and drops the file `drop` on it if
+/// given; the console's lines, after checking that the page reached its
+/// samples (again, on the dropped scene) and logged no error.
+fn open_page(
+    server: &Served,
+    modules: &Path,
+    query: &str,
+    drop: Option<&Path>,
+    screenshot: &Path,
+) -> String {
     let url = format!("http://127.0.0.1:{}/{query}", server.port);
-    let out = Command::new("node")
+    let mut check = Command::new("node");
+    check
         .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/web/check.mjs"))
         .arg(&url)
         .arg(screenshot)
-        .env("LUMIERE_NODE_MODULES", modules)
+        .env("LUMIERE_NODE_MODULES", modules);
+    if let Some(file) = drop {
+        check.env("LUMIERE_DROP", file);
+    }
+    let out = check
         .output()
         .expect("node (Node.js) runs the page's check");
     let console = String::from_utf8_lossy(&out.stdout).into_owned();
@@ -70,10 +82,12 @@ fn open_page(server: &Served, modules: &Path, query: &str, screenshot: &Path) ->
     console
 }
 
-/// The image's rectangle on the page, from "lumiere: reached …; image at X Y size W H".
+/// The image's rectangle on the page, from the last "lumiere: reached …;
+/// image at X Y size W H".
 fn image_rect(console: &str) -> [u32; 4] {
     let line = console
         .lines()
+        .rev()
         .find_map(|l| l.split_once("image at ").map(|(_, rest)| rest))
         .unwrap_or_else(|| panic!("the page did not report its image:\n{console}"));
     let numbers: Vec<u32> = line
@@ -103,16 +117,17 @@ fn render(args: &[&str]) -> image::RgbImage {
     image::open(&png).unwrap().to_rgb8()
 }
 
-/// The built-in scene, then a lesson step opened by the page's address.
+/// The built-in scene, a lesson step opened by the page's address, and a
+/// glTF file dropped on the page.
 #[test]
-fn the_page_renders_the_built_in_scene_and_a_lesson_step_as_lumiere_render_does() {
+fn the_page_renders_a_built_in_scene_a_lesson_step_and_a_dropped_gltf_as_lumiere_render_does() {
     let Some((site, modules)) = site_or_skip() else {
         return;
     };
     let server = Served::start(&site);
 
     let shot = scratch("page.png");
-    let console = open_page(&server, &modules, "?spp=8", &shot);
+    let console = open_page(&server, &modules, "?spp=8", None, &shot);
     assert!(
         console.contains("lumiere: reached 8 samples per pixel"),
         "{console}"
@@ -131,6 +146,7 @@ fn the_page_renders_the_built_in_scene_and_a_lesson_step_as_lumiere_render_does(
         &server,
         &modules,
         "?lesson=simulation-notions&step=3&spp=8",
+        None,
         &shot,
     );
     let page = image::open(&shot).unwrap().to_rgb8();
@@ -151,5 +167,19 @@ fn the_page_renders_the_built_in_scene_and_a_lesson_step_as_lumiere_render_does(
     assert!(
         worst <= 2 && mean < 0.5,
         "the lesson step's image differs from the render: worst {worst}/255, mean {mean:.3}"
+    );
+
+    // a glTF file dropped on the page, as a student drops one
+    let gltf = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/cornell-glass.gltf");
+    let shot = scratch("dropped.png");
+    let console = open_page(&server, &modules, "?spp=8", Some(&gltf), &shot);
+    assert!(console.contains("dropped cornell-glass.gltf"), "{console}");
+    let page = image::open(&shot).unwrap().to_rgb8();
+    let gltf = gltf.to_str().unwrap();
+    let expected = render(&[gltf, "--width", "640", "--height", "480", "--spp", "8"]);
+    let (worst, mean) = screen_difference(&page, image_rect(&console), &expected, 0..480);
+    assert!(
+        worst <= 2 && mean < 0.5,
+        "the dropped scene's image differs from the render: worst {worst}/255, mean {mean:.3}"
     );
 }

@@ -9,6 +9,7 @@ mod bench;
 mod convergence;
 pub mod display;
 mod export;
+mod files;
 pub mod four_up_view;
 mod interact;
 pub mod lesson_view;
@@ -180,6 +181,8 @@ pub struct LumiereApp {
     /// Offset of the zoomed image from the centre, in points.
     pub pan: egui::Vec2,
     exports: Vec<crate::platform::threads::Job<Result<String, String>>>,
+    /// Scene files dropped on the window (read in the background in the browser).
+    dropped: files::Dropped,
     /// The converged image errors are measured against (and differences drawn from).
     pub reference: Option<Arc<ReferenceImage>>,
     /// What the reference is valid for, its capture, the errors and curves.
@@ -293,6 +296,7 @@ impl LumiereApp {
             zoom: None,
             pan: egui::Vec2::ZERO,
             exports: Vec::new(),
+            dropped: files::Dropped::default(),
             reference: None,
             errors: reference::ErrorTracking::default(),
             compare: split::Compare::default(),
@@ -428,6 +432,8 @@ impl LumiereApp {
         self.scene = Arc::new(scene);
         self.scene_spec = spec.to_string();
         self.scene_field = spec.to_string();
+        // a scripted page reports again once the new scene has its samples
+        self.window_shot_requested = false;
     }
 
     /// What the viewer changed in the scene since it was loaded (nothing if
@@ -457,7 +463,12 @@ impl LumiereApp {
         // an idle worker short of the target has nothing left to do (adaptive
         // sampling has stopped every pixel): the run ends there
         let short = snapshot.samples_per_pixel() < target && !snapshot.idle;
-        if snapshot.preview || short || !split::settled(self) {
+        // the image of the scene shown now, not of one just replaced
+        let current = snapshot
+            .source
+            .as_ref()
+            .is_some_and(|s| s.scene.ptr_eq(&Arc::downgrade(&self.scene)));
+        if snapshot.preview || short || !current || !split::settled(self) {
             return;
         }
         // the noise view and the probe catch up with the last pass first
@@ -629,16 +640,14 @@ impl LumiereApp {
     }
 
     fn dropped_files(&mut self, ctx: &egui::Context) {
-        let dropped: Vec<PathBuf> = ctx.input(|i| {
-            i.raw
-                .dropped_files
-                .iter()
-                .map(|f| f.path().to_path_buf())
-                .filter(|p| !p.as_os_str().is_empty())
-                .collect()
-        });
-        if let Some(path) = dropped.first() {
-            self.load_scene(&path.to_string_lossy());
+        match self.dropped.take(ctx) {
+            Some(files::DroppedScene::Path(path)) => self.load_scene(&path),
+            Some(files::DroppedScene::Loaded(name, Ok(scene))) => self.show_scene(&name, *scene),
+            // the error names the file
+            Some(files::DroppedScene::Loaded(_, Err(e))) => {
+                self.message = Some(format!("error: {e}"))
+            }
+            None => {}
         }
     }
 }

@@ -13,7 +13,7 @@ const POLL: std::time::Duration = std::time::Duration::from_millis(40);
 
 /// Wakes the viewer; cheap to clone and send to any thread.
 #[derive(Clone)]
-pub struct Waker(egui::Context);
+pub struct Waker(#[cfg_attr(target_arch = "wasm32", allow(dead_code))] egui::Context);
 
 impl Waker {
     pub fn new(ctx: &egui::Context) -> Self {

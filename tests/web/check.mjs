@@ -2,11 +2,15 @@
 // chromium), waits until the viewer says on the console that it reached the
 // samples per pixel of the page's `spp=` and writes a screenshot; prints
 // every console line and page error, then "lumiere-check: ok" or fails.
+// With LUMIERE_DROP=FILE it then drops FILE on the page, as a user drops a
+// glTF file, and waits for the page to report again, on the new scene.
 //
 //   node tests/web/check.mjs URL SCREENSHOT.png [TIMEOUT_SECONDS]
 //
 // LUMIERE_NODE_MODULES names the folder whose node_modules holds
 // puppeteer-core (`npm install --prefix FOLDER puppeteer-core`).
+import { readFileSync } from 'node:fs';
+import { basename } from 'node:path';
 import { createRequire } from 'node:module';
 
 const require = createRequire(`${process.env.LUMIERE_NODE_MODULES ?? process.cwd()}/`);
@@ -20,7 +24,9 @@ const browser = await puppeteer.launch({
          '--disable-background-networking', '--disable-component-update', '--disable-sync',
          '--no-first-run', '--disable-quic'],
 });
+const drop = process.env.LUMIERE_DROP;
 let reached = null;
+let reports = 0;
 const lines = [];
 try {
   const page = await browser.newPage();
@@ -28,14 +34,35 @@ try {
   page.on('console', (message) => {
     const line = `${message.type()}: ${message.text()}`;
     lines.push(line);
-    if (message.text().startsWith('lumiere: reached')) reached = message.text();
+    if (message.text().startsWith('lumiere: reached')) {
+      reports += 1;
+      reached = message.text();
+    }
   });
   page.on('pageerror', (error) => lines.push(`pageerror: ${error.message}\n${error.stack ?? ''}`));
   const started = Date.now();
   await page.goto(url, { waitUntil: 'load' });
-  while (!reached && Date.now() - started < Number(timeout) * 1000) {
-    await new Promise((resolve) => setTimeout(resolve, 250));
+  const wait = async (count) => {
+    while (reports < count && Date.now() - started < Number(timeout) * 1000) {
+      await new Promise((resolve) => setTimeout(resolve, 250));
+    }
+  };
+  await wait(1);
+  if (drop && reports === 1) {
+    // a drop event carrying the file, on the canvas, as a browser sends it
+    const bytes = [...readFileSync(drop)];
+    await page.evaluate((name, data) => {
+      const transfer = new DataTransfer();
+      transfer.items.add(new File([new Uint8Array(data)], name));
+      const canvas = document.getElementById('lumiere');
+      for (const type of ['dragenter', 'dragover', 'drop']) {
+        canvas.dispatchEvent(new DragEvent(type, { dataTransfer: transfer, bubbles: true, cancelable: true }));
+      }
+    }, basename(drop), bytes);
+    lines.push(`dropped ${basename(drop)}`);
+    await wait(2);
   }
+  if (reports < (drop ? 2 : 1)) reached = null;
   const seconds = (Date.now() - started) / 1000;
   // a frame for the last pass
   await new Promise((resolve) => setTimeout(resolve, 500));
