@@ -9,7 +9,6 @@
 use std::time::Duration;
 
 use crate::platform::time::Instant;
-
 use crate::render::progressive::Snapshot;
 use crate::render::settings::BrdfOverride;
 

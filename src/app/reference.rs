@@ -10,8 +10,6 @@ use std::path::Path;
 use std::sync::Arc;
 use std::time::Duration;
 
-use crate::platform::time::Instant;
-
 use eframe::egui;
 use glam::Vec3;
 
@@ -19,6 +17,7 @@ use super::LumiereApp;
 use crate::analysis::capture::{ReferenceCapture, ReferenceJob, ReferenceKey};
 use crate::analysis::convergence::{CurveSet, ErrorPoint, EstimatorKey, RunId};
 use crate::analysis::metrics::{ReferenceImage, image_error};
+use crate::platform::time::Instant;
 use crate::render::export::load_exr;
 use crate::render::progressive::Snapshot;
 

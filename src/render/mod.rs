@@ -21,11 +21,10 @@ pub mod sidecar;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use crate::platform::time::Instant;
-
 use glam::Vec3;
 use rayon::prelude::*;
 
+use crate::platform::time::Instant;
 use crate::render::adaptive::terms_to_sample;
 use crate::render::context::RenderContext;
 use crate::render::film::Film;

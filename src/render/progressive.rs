@@ -13,7 +13,8 @@
 //!   the BVH first. On a restart the film is cleared, a quick preview at a
 //!   quarter of the resolution (one continuation per first hit) is published
 //!   first, then the splitting pilot chooses the continuations, then
-//!   full-resolution passes run; the pass under way is cancelled between tiles so the restart is prompt;
+//!   full-resolution passes run; the pass under way is cancelled between
+//!   tiles so the restart is prompt;
 //! * a change of the visible terms does **not** restart: each term has its own
 //!   accumulator and sample count; hidden terms are no longer computed but keep
 //!   their samples, and a term switched on accumulates from where it was;
@@ -29,10 +30,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard, Weak};
 use std::time::Duration;
 
-use crate::platform::time::Instant;
-
 use crate::geometry::camera::CameraRays;
 use crate::platform::threads::{self, Job};
+use crate::platform::time::Instant;
 use crate::render::context::RenderContext;
 use crate::render::film::Film;
 use crate::render::settings::{RenderSettings, Term, TermSet};

@@ -27,12 +27,12 @@
 //! estimator's 4096 spp left the reference a relMSE near 4·10⁻³, and no curve
 //! could reach 10⁻³.
 
-use crate::platform::time::Instant;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use crate::analysis::capture::{radiance_settings, reference_seed};
 use crate::analysis::metrics::{ReferenceImage, image_error};
+use crate::platform::time::Instant;
 use crate::render::export::{load_exr, save_image};
 use crate::render::settings::Choice;
 use crate::render::settings::{Adaptive, DisplaySettings, LightSampling, RenderSettings, Sampler};

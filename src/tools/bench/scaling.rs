@@ -13,7 +13,6 @@
 //! divided by the triangle count. Without the counting allocator (in the
 //! tests) the memory columns are empty.
 
-use crate::platform::time::Instant;
 use std::fmt;
 use std::path::Path;
 use std::sync::Arc;
@@ -22,6 +21,7 @@ use glam::Vec3;
 use serde::Serialize;
 use serde_json::json;
 
+use crate::platform::time::Instant;
 use crate::render::settings::RenderSettings;
 use crate::render::{Budget, render};
 use crate::scene::{Material, Scene, builtin, gltf};

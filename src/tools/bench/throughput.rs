@@ -23,13 +23,12 @@
 
 use std::time::Duration;
 
-use crate::platform::time::Instant;
-
 use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::geometry::Ray;
 use crate::geometry::accel::{Accel, Query};
+use crate::platform::time::Instant;
 use crate::render::{Budget, render, sample_stream};
 use crate::transport::counts::RayCounts;
 use crate::transport::path_log::{PathLog, PathSegment, SegmentKind};

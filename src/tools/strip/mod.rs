@@ -29,7 +29,6 @@
 //! The image is display-referred (the PNG export's exposure, tonemap, sRGB):
 //! labels are pixels, so a strip is written as PNG only.
 
-use crate::platform::time::Instant;
 use std::fmt;
 use std::path::Path;
 use std::str::FromStr;
@@ -38,6 +37,7 @@ use std::sync::Arc;
 use ab_glyph::{Font, GlyphId, PxScale, ScaleFont, point};
 use image::{ImageBuffer, Rgb};
 
+use crate::platform::time::Instant;
 use crate::render::context::RenderContext;
 use crate::render::export::{ExportError, to_srgb8};
 use crate::render::film::Film;
