@@ -42,27 +42,27 @@ fn scratch(name: &str) -> PathBuf {
     dir.join(name)
 }
 
-/// Opens `query` on the served page, and drops the file `drop` on it if
-/// given; the console's lines, after checking that the page reached its
-/// samples (again, on the dropped scene) and logged no error.
+/// Opens `query` on the served page and acts on it as `actions` say (the
+/// JSON list `tests/web/check.mjs` takes); the console's lines, after
+/// checking that the page reached its samples after each action and
+/// logged no error.
 fn open_page(
     server: &Served,
     modules: &Path,
     query: &str,
-    drop: Option<&Path>,
+    actions: &str,
     screenshot: &Path,
 ) -> String {
     let url = format!("http://127.0.0.1:{}/{query}", server.port);
-    let mut check = Command::new("node");
-    check
+    let downloads = downloads_of(screenshot);
+    std::fs::create_dir_all(&downloads).unwrap();
+    let out = Command::new("node")
         .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/web/check.mjs"))
         .arg(&url)
         .arg(screenshot)
-        .env("LUMIERE_NODE_MODULES", modules);
-    if let Some(file) = drop {
-        check.env("LUMIERE_DROP", file);
-    }
-    let out = check
+        .env("LUMIERE_NODE_MODULES", modules)
+        .env("LUMIERE_ACTIONS", actions)
+        .env("LUMIERE_DOWNLOADS", &downloads)
         .output()
         .expect("node (Node.js) runs the page's check");
     let console = String::from_utf8_lossy(&out.stdout).into_owned();
@@ -80,6 +80,17 @@ fn open_page(
         "{url}: errors on the console:\n{console}"
     );
     console
+}
+
+/// Where the page's downloads go: beside its screenshot.
+fn downloads_of(screenshot: &Path) -> PathBuf {
+    let stem = screenshot.file_stem().unwrap().to_string_lossy();
+    screenshot.with_file_name(format!("{stem}-downloads"))
+}
+
+/// A path as a JSON string.
+fn json_path(path: &Path) -> String {
+    serde_json::to_string(path.to_str().unwrap()).unwrap()
 }
 
 /// The image's rectangle on the page, from the last "lumiere: reached …;
@@ -127,7 +138,7 @@ fn the_page_renders_a_built_in_scene_a_lesson_step_and_a_dropped_gltf_as_lumiere
     let server = Served::start(&site);
 
     let shot = scratch("page.png");
-    let console = open_page(&server, &modules, "?spp=8", None, &shot);
+    let console = open_page(&server, &modules, "?spp=8", "[]", &shot);
     assert!(
         console.contains("lumiere: reached 8 samples per pixel"),
         "{console}"
@@ -146,7 +157,7 @@ fn the_page_renders_a_built_in_scene_a_lesson_step_and_a_dropped_gltf_as_lumiere
         &server,
         &modules,
         "?lesson=simulation-notions&step=3&spp=8",
-        None,
+        "[]",
         &shot,
     );
     let page = image::open(&shot).unwrap().to_rgb8();
@@ -172,7 +183,8 @@ fn the_page_renders_a_built_in_scene_a_lesson_step_and_a_dropped_gltf_as_lumiere
     // a glTF file dropped on the page, as a student drops one
     let gltf = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/cornell-glass.gltf");
     let shot = scratch("dropped.png");
-    let console = open_page(&server, &modules, "?spp=8", Some(&gltf), &shot);
+    let drop = format!(r#"[{{"drop": {}}}]"#, json_path(&gltf));
+    let console = open_page(&server, &modules, "?spp=8", &drop, &shot);
     assert!(console.contains("dropped cornell-glass.gltf"), "{console}");
     let page = image::open(&shot).unwrap().to_rgb8();
     let gltf = gltf.to_str().unwrap();
@@ -181,5 +193,75 @@ fn the_page_renders_a_built_in_scene_a_lesson_step_and_a_dropped_gltf_as_lumiere
     assert!(
         worst <= 2 && mean < 0.5,
         "the dropped scene's image differs from the render: worst {worst}/255, mean {mean:.3}"
+    );
+}
+
+/// A GLB opened with the file picker (Ctrl+O), the screenshot downloaded
+/// (Ctrl+S: PNG, EXR, settings), and a term switched off (key 0), which the
+/// page keeps in its local storage across a reload.
+#[test]
+fn the_page_opens_a_picked_glb_downloads_its_screenshot_and_keeps_its_settings() {
+    let Some((site, modules)) = site_or_skip() else {
+        return;
+    };
+    let server = Served::start(&site);
+    let gltf = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/cornell-mirror.gltf");
+    let glb = scratch("cornell-mirror.glb");
+    std::fs::write(&glb, common::glb(std::fs::read(&gltf).unwrap(), None)).unwrap();
+    let picked = scratch("picked.png");
+    let actions = format!(
+        r#"[{{"pick": {}, "shot": {}}}, {{"save": 3}}, {{"key": "Digit0"}}, {{"reload": true}}]"#,
+        json_path(&glb),
+        json_path(&picked)
+    );
+    let shot = scratch("reloaded.png");
+    let console = open_page(&server, &modules, "?spp=8", &actions, &shot);
+    assert!(console.contains("picked cornell-mirror.glb"), "{console}");
+
+    // the picked scene, as `lumiere render` renders its glTF
+    let gltf = gltf.to_str().unwrap();
+    let expected = render(&[gltf, "--width", "640", "--height", "480", "--spp", "8"]);
+    let page = image::open(&picked).unwrap().to_rgb8();
+    let (worst, mean) = screen_difference(&page, image_rect(&console), &expected, 0..480);
+    assert!(
+        worst <= 2 && mean < 0.5,
+        "the picked scene's image differs from the render: worst {worst}/255, mean {mean:.3}"
+    );
+
+    // its screenshot, downloaded: the image as displayed, its radiance, its settings
+    let downloads = downloads_of(&shot);
+    let named = |suffix: &str| {
+        let files: Vec<PathBuf> = std::fs::read_dir(&downloads)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.to_string_lossy().ends_with(suffix))
+            .collect();
+        assert_eq!(files.len(), 1, "one {suffix} in {files:?}");
+        files[0].clone()
+    };
+    let png = image::open(named(".png")).unwrap().to_rgb8();
+    let (worst, mean) = screen_difference(&png, [0, 0, 640, 480], &expected, 0..480);
+    assert!(
+        worst <= 2 && mean < 0.5,
+        "the downloaded PNG differs from the render: worst {worst}/255, mean {mean:.3}"
+    );
+    let exr = image::open(named(".exr")).unwrap();
+    assert_eq!((exr.width(), exr.height()), (640, 480));
+    let sidecar: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(named(".json")).unwrap()).unwrap();
+    assert_eq!(sidecar["samples_per_pixel"], 8, "{sidecar}");
+    assert_eq!(sidecar["scene"], "cornell-mirror.glb", "{sidecar}");
+    let stem = |path: PathBuf| path.file_stem().unwrap().to_owned();
+    assert_eq!(stem(named(".png")), stem(named(".json")));
+
+    // after the reload, the built-in scene with L0 still off
+    let page = image::open(&shot).unwrap().to_rgb8();
+    let expected = render(&[
+        "cornell", "--width", "640", "--height", "480", "--terms", "L1,L2", "--spp", "8",
+    ]);
+    let (worst, mean) = screen_difference(&page, image_rect(&console), &expected, 0..480);
+    assert!(
+        worst <= 2 && mean < 0.5,
+        "after the reload, the image differs from L1+L2: worst {worst}/255, mean {mean:.3}"
     );
 }

@@ -13,7 +13,8 @@ use std::sync::{Arc, Mutex};
 use eframe::egui;
 use glam::Vec3;
 
-use crate::render::export::{save_image, to_srgb8};
+use super::files::{Outbox, Saved};
+use crate::render::export::{ImageFormat, encode_image, to_srgb8};
 use crate::render::film::Film;
 use crate::render::four_up::{TILES, Tile};
 use crate::render::progressive::Snapshot;
@@ -42,41 +43,21 @@ pub struct ScreenshotJob {
 }
 
 impl ScreenshotJob {
-    /// Writes the files; returns a line saying where.
-    pub fn run(mut self) -> Result<String, String> {
-        std::fs::create_dir_all(&self.folder)
-            .map_err(|e| format!("{}: {e}", self.folder.display()))?;
-        let stem = self.free_stem();
+    /// Writes the files (through an [`Outbox`]); says where.
+    pub fn run(mut self) -> Result<Saved, String> {
+        let mut outbox = Outbox::new(&self.folder)?;
+        let stem = outbox.free_stem("lumiere", ".png");
         let snapshot = &self.snapshot;
         let display = self.sidecar.display;
-        let path = |suffix: &str| self.folder.join(format!("{stem}{suffix}"));
-        match &self.shown {
-            Shown::FourUp => four_up_strip(snapshot, display)?
-                .save_png(&path(".png"))
-                .map_err(|e| e.to_string())?,
-            Shown::Image | Shown::Split(_) => {
-                let shown = match &self.shown {
-                    Shown::Split(image) => image,
-                    _ => snapshot,
-                };
-                save_image(
-                    &path(".png"),
-                    shown.width,
-                    shown.height,
-                    &linear(shown),
-                    display,
-                )
-                .map_err(|e| e.to_string())?
-            }
-        }
-        save_image(
-            &path(".exr"),
-            snapshot.width,
-            snapshot.height,
-            &linear(snapshot),
-            display,
-        )
-        .map_err(|e| e.to_string())?;
+        let image =
+            |s: &Snapshot, format| encode_image(format, s.width, s.height, &linear(s), display);
+        let png = match &self.shown {
+            Shown::FourUp => four_up_strip(snapshot, display)?.png_bytes(),
+            Shown::Split(shown) => image(shown, ImageFormat::Png)?,
+            Shown::Image => image(snapshot, ImageFormat::Png)?,
+        };
+        outbox.write(&format!("{stem}.png"), png)?;
+        outbox.write(&format!("{stem}.exr"), image(snapshot, ImageFormat::Exr)?)?;
         if self.per_term_exr
             && let Some(film) = &self.film
         {
@@ -84,29 +65,14 @@ impl ScreenshotJob {
             for term in Term::ALL.into_iter().filter(|&t| film.samples(t) > 0) {
                 let label = term.label().replace('+', "plus");
                 let pixels = film.radiance(TermSet::only(term));
-                save_image(
-                    &path(&format!("-{label}.exr")),
-                    film.width,
-                    film.height,
-                    &pixels,
-                    display,
-                )
-                .map_err(|e| e.to_string())?;
+                let exr =
+                    encode_image(ImageFormat::Exr, film.width, film.height, &pixels, display)?;
+                outbox.write(&format!("{stem}-{label}.exr"), exr)?;
             }
         }
         self.sidecar.samples_per_pixel = snapshot.samples_per_pixel();
-        self.sidecar
-            .save(&path(".json"))
-            .map_err(|e| e.to_string())?;
-        Ok(format!("saved {}", path(".png").display()))
-    }
-
-    /// `lumiere-N` with the first N not used in the folder.
-    fn free_stem(&self) -> String {
-        (1..)
-            .map(|n| format!("lumiere-{n:03}"))
-            .find(|stem| !self.folder.join(format!("{stem}.png")).exists())
-            .expect("some number is free")
+        outbox.write(&format!("{stem}.json"), self.sidecar.to_json().into_bytes())?;
+        Ok(outbox.finish(""))
     }
 }
 

@@ -18,6 +18,7 @@ mod override_ui;
 mod panels;
 pub mod probe_view;
 pub mod reference;
+mod scene_panel;
 mod shown;
 mod source_quality;
 pub mod split;
@@ -36,7 +37,7 @@ use serde::{Deserialize, Serialize};
 use crate::analysis::metrics::ReferenceImage;
 use crate::analysis::noise::{DisplayMode, NoiseView};
 use crate::render::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
-use crate::render::settings::{DisplaySettings, RenderSettings};
+use crate::render::settings::{DisplaySettings, RenderSettings, TermSet};
 use crate::scene::{Camera, Scene, builtin};
 
 /// How the viewer starts (from the command line).
@@ -166,6 +167,9 @@ pub struct LumiereApp {
     /// Set by the screenshot callback: the outcome of saving the window.
     window_shot: Arc<Mutex<Option<Result<PathBuf, String>>>>,
     window_shot_requested: bool,
+    /// The image (worker, restart, terms) a scripted page last reported.
+    #[cfg_attr(not(target_arch = "wasm32"), allow(dead_code))]
+    reported_film: Option<(u64, u64, TermSet)>,
     /// Where the image was drawn last frame (points).
     image_rect: Option<egui::Rect>,
     orbit: interact::Orbit,
@@ -180,9 +184,11 @@ pub struct LumiereApp {
     pub zoom: Option<u32>,
     /// Offset of the zoomed image from the centre, in points.
     pub pan: egui::Vec2,
-    exports: Vec<crate::platform::threads::Job<Result<String, String>>>,
+    exports: Vec<crate::platform::threads::Job<Result<files::Saved, String>>>,
     /// Scene files dropped on the window (read in the background in the browser).
     dropped: files::Dropped,
+    /// Ctrl+O on the desktop: the Scene group opens on its file field.
+    open_file_requested: bool,
     /// The converged image errors are measured against (and differences drawn from).
     pub reference: Option<Arc<ReferenceImage>>,
     /// What the reference is valid for, its capture, the errors and curves.
@@ -287,6 +293,7 @@ impl LumiereApp {
             script_failure: Arc::default(),
             window_shot: Arc::default(),
             window_shot_requested: false,
+            reported_film: None,
             image_rect: None,
             orbit: interact::Orbit::default(),
             selected: None,
@@ -297,6 +304,7 @@ impl LumiereApp {
             pan: egui::Vec2::ZERO,
             exports: Vec::new(),
             dropped: files::Dropped::default(),
+            open_file_requested: false,
             reference: None,
             errors: reference::ErrorTracking::default(),
             compare: split::Compare::default(),
@@ -432,8 +440,6 @@ impl LumiereApp {
         self.scene = Arc::new(scene);
         self.scene_spec = spec.to_string();
         self.scene_field = spec.to_string();
-        // a scripted page reports again once the new scene has its samples
-        self.window_shot_requested = false;
     }
 
     /// What the viewer changed in the scene since it was loaded (nothing if
@@ -485,9 +491,12 @@ impl LumiereApp {
         }
         let Some(path) = self.screenshot.clone() else {
             // a page cannot close itself: it says so on its console, once
+            // for each film and terms shown
             #[cfg(target_arch = "wasm32")]
-            if !self.window_shot_requested {
-                self.window_shot_requested = true;
+            if self.reported_film != Some((self.renderer_serial, snapshot.restarts, snapshot.terms))
+            {
+                self.reported_film =
+                    Some((self.renderer_serial, snapshot.restarts, snapshot.terms));
                 web::report_reached(
                     snapshot,
                     self.image_rect.map(|r| r * ctx.pixels_per_point()),
@@ -632,7 +641,7 @@ impl LumiereApp {
         self.exports = running;
         for handle in finished {
             self.message = Some(match handle.join() {
-                Some(Ok(done)) => done,
+                Some(Ok(saved)) => files::deliver(saved),
                 Some(Err(e)) => format!("error: {e}"),
                 None => "error: the export failed".into(),
             });

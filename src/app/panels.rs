@@ -82,6 +82,9 @@ pub fn shortcuts(app: &mut LumiereApp, ctx: &egui::Context) {
     if ctx.input_mut(|i| i.consume_key(egui::Modifiers::COMMAND, egui::Key::S)) {
         app.save_screenshot();
     }
+    if ctx.input_mut(|i| i.consume_key(egui::Modifiers::COMMAND, egui::Key::O)) {
+        super::scene_panel::open_file(app);
+    }
 }
 
 fn next<T: Copy + PartialEq>(all: &[T], current: T) -> T {
@@ -179,7 +182,7 @@ pub fn side_panel(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 camera_ui(app, ui);
                 display_ui(app, ui);
                 render_ui(app, ui);
-                scene_ui(app, ui);
+                super::scene_panel::scene_ui(app, ui);
                 reference::error_ui(app, ui);
                 split::compare_ui(app, ui);
             });
@@ -692,11 +695,15 @@ fn render_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             );
             ui.add(egui::DragValue::new(&mut settings.seed).prefix("seed "));
             ui.checkbox(&mut app.state.per_term_exr, "also one EXR per term");
-            ui.horizontal(|ui| {
-                let label = ui.label("save to");
-                ui.text_edit_singleline(&mut app.state.export_dir)
-                    .labelled_by(label.id);
-            });
+            if cfg!(target_arch = "wasm32") {
+                ui.label("saved files go to the browser's downloads");
+            } else {
+                ui.horizontal(|ui| {
+                    let label = ui.label("save to");
+                    ui.text_edit_singleline(&mut app.state.export_dir)
+                        .labelled_by(label.id);
+                });
+            }
         });
 }
 
@@ -723,79 +730,4 @@ fn shown_size_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
         ui.add(egui::DragValue::new(height).range(sides))
             .on_hover_text("The picture's height, in pixels");
     });
-}
-
-fn scene_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
-    egui::CollapsingHeader::new("Scene")
-        .default_open(false)
-        .show(ui, |ui| {
-            ui.label(format!(
-                "{}: {} triangles, {} lights",
-                app.scene.name,
-                app.scene.triangles.len(),
-                app.scene.lights.len()
-            ));
-            let mut chosen = None;
-            egui::CollapsingHeader::new("library")
-                .default_open(true)
-                .show(ui, |ui| {
-                    for (index, scene) in crate::scene::builtin::SCENES.iter().enumerate() {
-                        let current = app.scene_spec == scene.name;
-                        if library_row(ui, &mut app.thumbnails, index, current) {
-                            chosen = Some(scene.name);
-                        }
-                    }
-                })
-                .header_response
-                .on_hover_text(
-                    "The scene library: the Cornell box, its variants, one scene per lesson",
-                );
-            if let Some(name) = chosen {
-                app.load_scene(name);
-            }
-            ui.horizontal(|ui| {
-                let label = ui.label("file");
-                let field = ui
-                    .text_edit_singleline(&mut app.scene_field)
-                    .labelled_by(label.id);
-                let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-                if ui.button("Load").clicked() || enter {
-                    let spec = app.scene_field.clone();
-                    app.load_scene(&spec);
-                }
-            });
-            ui.label(
-                egui::RichText::new("or drop a .gltf/.glb file on the window")
-                    .weak()
-                    .small(),
-            );
-        });
-}
-
-/// One scene of the library: its thumbnail, its name and its description;
-/// true when it was clicked.
-fn library_row(
-    ui: &mut egui::Ui,
-    thumbnails: &mut super::thumbnails::Thumbnails,
-    index: usize,
-    current: bool,
-) -> bool {
-    let scene = &crate::scene::builtin::SCENES[index];
-    let [width, height] = super::thumbnails::SIZE.map(|v| v as f32);
-    ui.horizontal(|ui| {
-        let picture = match thumbnails.get(ui.ctx(), index) {
-            Some(texture) => ui.add(
-                egui::Image::new((texture.id(), egui::vec2(width, height)))
-                    .sense(egui::Sense::click()),
-            ),
-            None => ui.add_sized([width, height], egui::Spinner::new()),
-        };
-        ui.vertical(|ui| {
-            let name = ui.selectable_label(current, egui::RichText::new(scene.name).strong());
-            ui.add(egui::Label::new(egui::RichText::new(scene.description).small()).wrap());
-            name.clicked() || picture.clicked()
-        })
-        .inner
-    })
-    .inner
 }

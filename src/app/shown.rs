@@ -9,6 +9,7 @@ use std::sync::Arc;
 
 use eframe::egui;
 
+use super::files::{Outbox, Saved};
 use super::{LumiereApp, four_up_view, split};
 use crate::analysis::noise::FalseColour;
 use crate::analysis::path_view::PathLine;
@@ -101,30 +102,26 @@ pub fn job(app: &LumiereApp, target: Target, size: (u32, u32)) -> Result<ShownJo
 }
 
 impl ShownJob {
-    /// Composes and writes the picture and its sidecar; returns a line saying where.
-    pub fn run(mut self) -> Result<String, String> {
+    /// Composes and writes the picture and its sidecar; says where.
+    pub fn run(mut self) -> Result<Saved, String> {
         let (width, height) = self.size;
         let canvas = compose_shown(&self.picture(), width, height)?;
-        let path = match &self.target {
-            Target::File(path) => path.clone(),
+        let (mut outbox, stem) = match &self.target {
+            Target::File(path) => {
+                let folder = path.parent().unwrap_or(Path::new(""));
+                let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+                (Outbox::new(folder)?, stem.into_owned())
+            }
             Target::Folder(folder) => {
-                std::fs::create_dir_all(folder)
-                    .map_err(|e| format!("{}: {e}", folder.display()))?;
-                free_path(folder)
+                let outbox = Outbox::new(folder)?;
+                let stem = outbox.free_stem("lumiere-shown", ".png");
+                (outbox, stem)
             }
         };
-        canvas
-            .to_rgb_image()
-            .save(&path)
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+        outbox.write(&format!("{stem}.png"), canvas.png_bytes())?;
         self.sidecar.samples_per_pixel = self.snapshot.samples_per_pixel();
-        self.sidecar
-            .save(&path.with_extension("json"))
-            .map_err(|e| e.to_string())?;
-        Ok(format!(
-            "saved {} ({width}×{height}, as shown)",
-            path.display()
-        ))
+        outbox.write(&format!("{stem}.json"), self.sidecar.to_json().into_bytes())?;
+        Ok(outbox.finish(&format!(" ({width}×{height}, as shown)")))
     }
 
     /// The viewport's picture as plain data: sRGB images, labels, rays, texts.
@@ -172,14 +169,6 @@ impl ShownJob {
     }
 }
 
-/// `lumiere-shown-NNN.png` in `folder`, with the first N not used.
-fn free_path(folder: &Path) -> PathBuf {
-    (1..)
-        .map(|n| folder.join(format!("lumiere-shown-{n:03}.png")))
-        .find(|path| !path.exists())
-        .expect("some number is free")
-}
-
 /// The button: the picture at the Render group's size, in the screenshots'
 /// folder, written in the background; a size out of range is refused in
 /// the status bar.
@@ -202,7 +191,7 @@ pub enum ScriptShown {
     #[default]
     Done,
     Pending(PathBuf),
-    Running(Job<Result<String, String>>),
+    Running(Job<Result<Saved, String>>),
 }
 
 /// Scripted runs, once the image is final: writes the `--save-as-shown`
@@ -222,7 +211,7 @@ pub fn script_step(app: &mut LumiereApp, ctx: &egui::Context) -> bool {
         },
         ScriptShown::Running(handle) if handle.is_finished() => {
             match handle.join() {
-                Some(Ok(done)) => eprintln!("{done}"),
+                Some(Ok(done)) => eprintln!("{}", done.message),
                 Some(Err(e)) => app.script_failed(e),
                 None => app.script_failed("the picture could not be written".into()),
             }

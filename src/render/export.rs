@@ -67,21 +67,44 @@ pub fn save_image(
     let format = ImageFormat::from_path(path).ok_or_else(|| {
         fail("unknown image format: the file name must end in .exr or .png".into())
     })?;
+    let bytes = encode_image(format, width, height, pixels, display).map_err(fail)?;
+    std::fs::write(path, bytes).map_err(|e| fail(format!("cannot write: {e}")))
+}
+
+/// The bytes of the file [`save_image`] writes, for a download.
+pub fn encode_image(
+    format: ImageFormat,
+    width: u32,
+    height: u32,
+    pixels: &[Vec3],
+    display: DisplaySettings,
+) -> Result<Vec<u8>, String> {
+    let mismatch = || "image size mismatch".to_string();
+    let mut bytes = std::io::Cursor::new(Vec::new());
     let result = match format {
         ImageFormat::Exr => {
             let data: Vec<f32> = pixels.iter().flat_map(|p| p.to_array()).collect();
-            let image: ImageBuffer<Rgb<f32>, _> = ImageBuffer::from_raw(width, height, data)
-                .ok_or_else(|| fail("image size mismatch".into()))?;
-            image.save(path)
+            let image: ImageBuffer<Rgb<f32>, _> =
+                ImageBuffer::from_raw(width, height, data).ok_or_else(mismatch)?;
+            image.write_to(&mut bytes, image::ImageFormat::OpenExr)
         }
         ImageFormat::Png => {
-            let image: ImageBuffer<Rgb<u8>, _> =
-                ImageBuffer::from_raw(width, height, to_srgb8(pixels, display))
-                    .ok_or_else(|| fail("image size mismatch".into()))?;
-            image.save(path)
+            return encode_png(width, height, &to_srgb8(pixels, display)).ok_or_else(mismatch);
         }
     };
-    result.map_err(|e| fail(e.to_string()))
+    result.map_err(|e| e.to_string())?;
+    Ok(bytes.into_inner())
+}
+
+/// 8-bit sRGB pixels (RGB, row-major from the top) as a PNG file's bytes;
+/// `None` if their number is not `width`×`height`.
+pub fn encode_png(width: u32, height: u32, srgb: &[u8]) -> Option<Vec<u8>> {
+    let image: ImageBuffer<Rgb<u8>, _> = ImageBuffer::from_raw(width, height, srgb)?;
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image
+        .write_to(&mut bytes, image::ImageFormat::Png)
+        .expect("a PNG encodes in memory");
+    Some(bytes.into_inner())
 }
 
 /// Reads an EXR written by [`save_image`] back as linear RGB.

@@ -40,6 +40,11 @@ pub struct SidecarError {
 }
 
 impl Sidecar {
+    /// The file's text, as [`Sidecar::save`] writes it.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).expect("settings serialise")
+    }
+
     pub fn load(path: &Path) -> Result<Self, SidecarError> {
         let fail = |problem: String| SidecarError {
             path: path.to_path_buf(),
@@ -53,8 +58,7 @@ impl Sidecar {
     }
 
     pub fn save(&self, path: &Path) -> Result<(), SidecarError> {
-        let text = serde_json::to_string_pretty(self).expect("settings serialise");
-        std::fs::write(path, text).map_err(|e| SidecarError {
+        std::fs::write(path, self.to_json()).map_err(|e| SidecarError {
             path: path.to_path_buf(),
             problem: format!("cannot write: {e}"),
         })

@@ -329,6 +329,12 @@ impl Canvas {
         RgbImage::from_raw(self.width, self.height, self.pixels.clone())
             .expect("the buffer matches the size")
     }
+
+    /// The canvas as a PNG file's bytes.
+    pub fn png_bytes(&self) -> Vec<u8> {
+        crate::render::export::encode_png(self.width, self.height, &self.pixels)
+            .expect("the buffer matches the size")
+    }
 }
 
 /// For each of `to` pixels along an axis, the pixels of `from` its

@@ -35,7 +35,6 @@ use std::str::FromStr;
 use std::sync::Arc;
 
 use ab_glyph::{Font, GlyphId, PxScale, ScaleFont, point};
-use image::{ImageBuffer, Rgb};
 
 use crate::platform::time::Instant;
 use crate::render::context::RenderContext;
@@ -518,13 +517,16 @@ impl StripImage {
     }
 
     pub fn save_png(&self, path: &Path) -> Result<(), ExportError> {
-        let image: ImageBuffer<Rgb<u8>, _> =
-            ImageBuffer::from_raw(self.width(), self.height(), self.pixels.as_slice())
-                .expect("the buffer matches the layout");
-        image.save(path).map_err(|e| ExportError {
+        std::fs::write(path, self.png_bytes()).map_err(|e| ExportError {
             path: path.to_path_buf(),
-            problem: e.to_string(),
+            problem: format!("cannot write: {e}"),
         })
+    }
+
+    /// The PNG file's bytes.
+    pub fn png_bytes(&self) -> Vec<u8> {
+        crate::render::export::encode_png(self.width(), self.height(), &self.pixels)
+            .expect("the buffer matches the layout")
     }
 
     fn fill(&mut self, rect: Rect, color: [u8; 3]) {
