@@ -7,7 +7,7 @@ use std::process::Command;
 
 use common::{render_film, small};
 use lumiere::scene::builtin;
-use lumiere::{LightMode, Term, TermSet};
+use lumiere::{Film, LightMode, RenderContext, RenderSettings, Term, TermSet};
 
 /// L0, L1 and L2 rendered one at a time with one seed sum to the L0,L1,L2
 /// render: each term's accumulator is filled by the same numbers either way.
@@ -71,6 +71,64 @@ fn same_seed_same_image_for_any_thread_count() {
     reseeded.seed = 1;
     let different = render_film(builtin::cornell(), &reseeded, 3).radiance(TermSet::ALL);
     assert_ne!(one, different, "the seed must change the noise");
+}
+
+/// A pass rendered a few tiles at a time, as a page with one thread renders
+/// between frames, adds to the film exactly what the parallel pass adds,
+/// adaptive sampling included.
+#[test]
+fn a_pass_rendered_tile_by_tile_gives_the_same_film() {
+    use lumiere::platform::time::Instant;
+    use lumiere::render::settings::Adaptive;
+    use lumiere::render::{PartialPass, PassBuffer, render_pass, render_pass_until};
+
+    let settings = RenderSettings {
+        adaptive: Some(Adaptive {
+            threshold: 0.3,
+            min_samples: 2,
+        }),
+        ..small(40, 30, TermSet::ALL)
+    };
+    let context = RenderContext::new(builtin::cornell(), settings);
+    let (mut whole, mut tiled) = (Film::new(40, 30), Film::new(40, 30));
+    let (mut buffer, mut tiled_buffer) = (PassBuffer::default(), PassBuffer::default());
+    let mut skipped = 0;
+    for pass in 0..6 {
+        let counts = render_pass(&context, &mut whole, pass, &mut buffer);
+        skipped += counts.skipped.converged;
+        // a deadline already passed: one tile per call
+        let mut partial = PartialPass::new(&context, &tiled, pass);
+        let mut calls = 1;
+        let tiled_counts = loop {
+            match render_pass_until(
+                &context,
+                &mut tiled,
+                &mut partial,
+                &mut tiled_buffer,
+                Instant::now(),
+            ) {
+                Some(counts) => break counts,
+                None => calls += 1,
+            }
+        };
+        assert_eq!(
+            calls,
+            30 / 4 + 1,
+            "pass {pass}: one call per band of 4 rows"
+        );
+        assert_eq!(tiled_counts, counts, "pass {pass}: the rays traced");
+    }
+    assert!(skipped > 0, "adaptive sampling stopped some pixels");
+    for term in Term::ALL {
+        assert_eq!(whole.samples(term), tiled.samples(term), "{term:?}");
+    }
+    let bits = |film: &Film| -> Vec<[u32; 3]> {
+        film.radiance(TermSet::ALL)
+            .iter()
+            .map(|p| p.to_array().map(f32::to_bits))
+            .collect()
+    };
+    assert_eq!(bits(&whole), bits(&tiled), "the tiled passes differ");
 }
 
 fn lumiere() -> Command {

@@ -83,6 +83,15 @@ fn the_site_is_served_cross_origin_isolated_and_confined_to_its_folder() {
     let (status, _, _) = get(&server, "POST", "/");
     assert_eq!(status, "HTTP/1.1 405 Method Not Allowed");
     drop(server);
+
+    // --no-isolation: the same files, as a plain static host serves them
+    let plain = Served::start_with(&site, &["--no-isolation"]);
+    let (status, headers, body) = get(&plain, "GET", "/");
+    assert_eq!(status, "HTTP/1.1 200 OK");
+    assert_eq!(body, b"<!doctype html><p>lumiere</p>");
+    assert_eq!(header(&headers, "cross-origin-opener-policy"), None);
+    assert_eq!(header(&headers, "cross-origin-embedder-policy"), None);
+    drop(plain);
     std::fs::remove_dir_all(&root).unwrap();
 }
 

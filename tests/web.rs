@@ -265,3 +265,30 @@ fn the_page_opens_a_picked_glb_downloads_its_screenshot_and_keeps_its_settings()
         "after the reload, the image differs from L1+L2: worst {worst}/255, mean {mean:.3}"
     );
 }
+
+/// Served without the cross-origin-isolation headers, as a plain static
+/// host serves it: the page says it renders on one thread, and does, to
+/// the same image.
+#[test]
+fn a_page_that_is_not_cross_origin_isolated_renders_on_one_thread() {
+    let Some((site, modules)) = site_or_skip() else {
+        return;
+    };
+    let server = Served::start_with(&site, &["--no-isolation"]);
+    let shot = scratch("one-thread.png");
+    // the notice is read, then closed, as a student does
+    let close = r##"[{"click": "#notice button"}]"##;
+    let console = open_page(&server, &modules, "?spp=4", close, &shot);
+    assert!(
+        console.contains("lumiere: one thread (the page is not cross-origin isolated)"),
+        "{console}"
+    );
+    assert!(!console.contains("Web Workers"), "{console}");
+    let page = image::open(&shot).unwrap().to_rgb8();
+    let expected = render(&["cornell", "--width", "640", "--height", "480", "--spp", "4"]);
+    let (worst, mean) = screen_difference(&page, image_rect(&console), &expected, 0..480);
+    assert!(
+        worst <= 2 && mean < 0.5,
+        "the one-thread page's image differs from the render: worst {worst}/255, mean {mean:.3}"
+    );
+}

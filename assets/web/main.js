@@ -1,9 +1,14 @@
 // Starts lumiere's viewer on the page: the WebAssembly module, rayon's pool
 // of Web Workers, then the viewer on the canvas. Any failure is written on
 // the page, never a blank canvas.
-import init, { initThreadPool, start } from './pkg/lumiere.js';
+//
+// Web Workers share the module's memory, which a browser allows only on a
+// cross-origin-isolated page (`lumiere serve` sends the two headers). Any
+// other page loads the module built for one thread, which renders between
+// frames, and says so.
 
 const status = document.getElementById('status');
+const notice = document.getElementById('notice');
 
 function fail(message) {
   status.className = 'error';
@@ -16,21 +21,25 @@ window.addEventListener('error', (event) => fail(`lumiere stopped: ${event.messa
 window.addEventListener('unhandledrejection', (event) => fail(`lumiere stopped: ${event.reason}`));
 
 async function main() {
-  if (!self.crossOriginIsolated) {
-    // shared WebAssembly memory, which the render threads need, exists only
-    // on a cross-origin-isolated page
-    fail('This page is not cross-origin isolated, so lumiere cannot start its render threads.\n' +
-         'Serve the folder with `lumiere serve FOLDER`, which sends the two headers it needs\n' +
-         '(Cross-Origin-Opener-Policy: same-origin, Cross-Origin-Embedder-Policy: require-corp).');
-    return;
+  const isolated = self.crossOriginIsolated;
+  const module = await import(isolated ? './pkg/lumiere.js' : './pkg-one-thread/lumiere.js');
+  await module.default();
+  if (isolated) {
+    // the cores render; one more worker runs the viewer's progressive loop
+    // (`?threads=N` sets the number of workers)
+    const asked = Number(new URLSearchParams(location.search).get('threads'));
+    const threads = asked >= 1 ? Math.min(asked, 64)
+      : Math.max(1, navigator.hardwareConcurrency || 1) + 1;
+    await module.initThreadPool(threads);
+    console.log(`lumiere: ${threads} Web Workers`);
+  } else {
+    console.log('lumiere: one thread (the page is not cross-origin isolated)');
+    notice.firstElementChild.textContent = 'This page is not cross-origin isolated, so lumiere renders on one thread, ' +
+      'between frames. Serve the folder with `lumiere serve FOLDER` to render on every core.';
+    notice.hidden = false;
   }
-  await init();
-  // the cores render; one more worker runs the viewer's progressive loop
-  const threads = Math.max(1, navigator.hardwareConcurrency || 1) + 1;
-  await initThreadPool(threads);
-  console.log(`lumiere: ${threads} Web Workers`);
   status.hidden = true;
-  await start('lumiere');
+  await module.start('lumiere');
 }
 
 main().catch((error) => fail(`lumiere could not start: ${error}`));

@@ -17,6 +17,7 @@ use std::sync::{Arc, Mutex};
 
 use eframe::egui;
 
+use super::LumiereApp;
 use crate::scene::Scene;
 
 /// What a drop brought.
@@ -82,6 +83,32 @@ impl Dropped {
         if let Err(e) = web::pick(Arc::clone(&self.inbox)) {
             web_sys::console::error_1(&e);
         }
+    }
+}
+
+/// Each frame: opens the scene dropped or picked, once read; an error
+/// (which names the file) goes to the status bar.
+pub fn open_dropped(app: &mut LumiereApp, ctx: &egui::Context) {
+    match app.dropped.take(ctx) {
+        Some(DroppedScene::Path(path)) => app.load_scene(&path),
+        Some(DroppedScene::Loaded(name, Ok(scene))) => app.show_scene(&name, *scene),
+        Some(DroppedScene::Loaded(_, Err(e))) => app.message = Some(format!("error: {e}")),
+        None => {}
+    }
+}
+
+/// Each frame: the exports finished, delivered ([`deliver`]); the status
+/// bar says where they went, or why not.
+pub fn collect_exports(app: &mut LumiereApp) {
+    let (finished, running): (Vec<_>, Vec<_>) =
+        app.exports.drain(..).partition(|h| h.is_finished());
+    app.exports = running;
+    for handle in finished {
+        app.message = Some(match handle.join() {
+            Some(Ok(saved)) => deliver(saved),
+            Some(Err(e)) => format!("error: {e}"),
+            None => "error: the export failed".into(),
+        });
     }
 }
 

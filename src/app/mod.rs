@@ -635,28 +635,17 @@ impl LumiereApp {
         }
     }
 
-    fn collect_exports(&mut self) {
-        let (finished, running): (Vec<_>, Vec<_>) =
-            self.exports.drain(..).partition(|h| h.is_finished());
-        self.exports = running;
-        for handle in finished {
-            self.message = Some(match handle.join() {
-                Some(Ok(saved)) => files::deliver(saved),
-                Some(Err(e)) => format!("error: {e}"),
-                None => "error: the export failed".into(),
-            });
+    /// On a page with one thread, the renderers' work for this frame (about
+    /// 25 ms, which leaves the page responsive), and another frame while
+    /// work remains; elsewhere their threads render and this does nothing.
+    fn render_between_frames(&mut self, ctx: &egui::Context) {
+        const BUDGET: std::time::Duration = std::time::Duration::from_millis(25);
+        let mut more = self.renderer.run_between_frames(BUDGET);
+        if let Some(b) = &self.compare.renderer {
+            more |= b.run_between_frames(BUDGET);
         }
-    }
-
-    fn dropped_files(&mut self, ctx: &egui::Context) {
-        match self.dropped.take(ctx) {
-            Some(files::DroppedScene::Path(path)) => self.load_scene(&path),
-            Some(files::DroppedScene::Loaded(name, Ok(scene))) => self.show_scene(&name, *scene),
-            // the error names the file
-            Some(files::DroppedScene::Loaded(_, Err(e))) => {
-                self.message = Some(format!("error: {e}"))
-            }
-            None => {}
+        if more {
+            ctx.request_repaint();
         }
     }
 }
@@ -669,11 +658,13 @@ impl eframe::App for LumiereApp {
         }
         let ctx = ui.ctx().clone();
         waker::poll(&ctx);
-        self.dropped_files(&ctx);
-        self.collect_exports();
+        files::open_dropped(self, &ctx);
+        files::collect_exports(self);
         panels::shortcuts(self, &ctx);
         lesson_view::shortcuts(self, &ctx);
         let snapshot = self.snapshot();
+        #[cfg(target_arch = "wasm32")]
+        web::report_first_image(&snapshot);
         if self.state.auto_exposure
             && let Some(exposure) = auto_exposure(&snapshot)
         {
@@ -703,6 +694,7 @@ impl eframe::App for LumiereApp {
         self.bench_step(&ctx, &snapshot, started);
         self.sync_renderer();
         split::sync(self, &ctx);
+        self.render_between_frames(&ctx);
         self.script_exit(&ctx, &snapshot);
     }
 

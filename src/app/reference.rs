@@ -277,13 +277,20 @@ fn capture_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
         return;
     }
     ui.horizontal(|ui| {
-        if ui
-            .button("Capture reference")
+        // on a page with one thread the capture would hold the page until done
+        let capture = ui
+            .add_enabled(
+                !crate::platform::threads::ONE_THREAD,
+                egui::Button::new("Capture reference"),
+            )
             .on_hover_text(
                 "Render the current view to this many samples per pixel, with a seed of its own",
             )
-            .clicked()
-        {
+            .on_disabled_hover_text(
+                "Needs the page's Web Workers: serve the site with `lumiere serve`, \
+                 which makes the page cross-origin isolated",
+            );
+        if capture.clicked() {
             start_capture(app, &ui.ctx().clone());
         }
         ui.add(

@@ -28,7 +28,7 @@ pub struct Compare {
     pub enabled: bool,
     /// What B changes from A's settings.
     pub b: SettingsOverride,
-    renderer: Option<ProgressiveRenderer>,
+    pub renderer: Option<ProgressiveRenderer>,
     /// Worker number of B's renderer (see `LumiereApp::renderer_serial`).
     pub serial: u64,
     sent: Option<ViewRequest>,

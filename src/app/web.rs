@@ -4,9 +4,10 @@
 //! `?lesson=simulation-notions&step=3&lang=fr` opens a lesson on a step
 //! (counted from 1, as the viewer shows it); `?scene=cornell-glass` a
 //! built-in scene; `&spp=8` stops at 8 samples per pixel and says so on
-//! the console (what the page's test waits for). The page starts rayon's pool of Web Workers
-//! ([`init_thread_pool`]) before [`start`] when it is cross-origin
-//! isolated, and renders on its own thread otherwise.
+//! the console (what the page's test waits for). A cross-origin-isolated
+//! page loads the module built with `web-threads` and starts rayon's pool
+//! of Web Workers (`init_thread_pool`) before [`start`]; any other page
+//! loads the one-thread module, which renders between frames.
 
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
@@ -16,6 +17,7 @@ use eframe::egui;
 use super::{LumiereApp, ViewOptions};
 use crate::lesson::{Lang, Lesson};
 
+#[cfg(feature = "web-threads")]
 pub use wasm_bindgen_rayon::init_thread_pool;
 
 /// Opens the viewer on the canvas `canvas_id`; an error is the page's to show.
@@ -37,6 +39,21 @@ pub async fn start(canvas_id: String) -> Result<(), JsValue> {
             Box::new(move |cc| Ok(Box::new(LumiereApp::new(cc, options)?))),
         )
         .await
+}
+
+/// The first frame with an image: says on the console how long after the
+/// page was opened (the time a student waits before the viewer answers).
+pub fn report_first_image(snapshot: &crate::render::progressive::Snapshot) {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    static REPORTED: AtomicBool = AtomicBool::new(false);
+    if snapshot.radiance.is_empty() || REPORTED.swap(true, Ordering::Relaxed) {
+        return;
+    }
+    let since_opened = web_sys::window()
+        .and_then(|w| w.performance())
+        .map_or(0.0, |p| p.now() / 1000.0);
+    let line = format!("lumiere: first image {since_opened:.2} s after the page was opened");
+    web_sys::console::log_1(&line.into());
 }
 
 /// A scripted page (`?spp=N`) has its image: the line a test waits for,

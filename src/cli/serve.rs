@@ -5,7 +5,8 @@
 //! a browser allows only to a cross-origin-isolated page: every response
 //! carries `Cross-Origin-Opener-Policy: same-origin` and
 //! `Cross-Origin-Embedder-Policy: require-corp`. A plain static server
-//! without them gives a page that renders on one thread (it says so).
+//! without them gives a page that renders on one thread (it says so);
+//! `--no-isolation` serves the folder so, to see that page.
 //!
 //! A small HTTP/1.1 server for GET and HEAD of files in one folder: one
 //! thread per connection, no keep-alive, paths inside the folder only.
@@ -26,6 +27,10 @@ pub struct ServeArgs {
     /// Port on 127.0.0.1 (0: any free port, printed).
     #[arg(long, default_value_t = 8080)]
     pub port: u16,
+    /// Without the cross-origin-isolation headers, as a plain static host
+    /// serves files: the page then renders on one thread.
+    #[arg(long)]
+    pub no_isolation: bool,
 }
 
 /// Serves the folder until the process is stopped.
@@ -50,18 +55,19 @@ pub fn run(args: &ServeArgs) -> Result<(), Failure> {
         "serving {} at http://127.0.0.1:{port}/ (Ctrl+C stops)",
         root.display()
     );
+    let isolation = !args.no_isolation;
     for stream in listener.incoming().flatten() {
         let root = root.clone();
         std::thread::spawn(move || {
             // a client that goes away mid-answer is not an error of the server
-            let _ = answer(stream, &root);
+            let _ = answer(stream, &root, isolation);
         });
     }
     Ok(())
 }
 
-/// Reads one request and answers it.
-fn answer(stream: TcpStream, root: &Path) -> std::io::Result<()> {
+/// Reads one request and answers it, with the isolation headers if `isolation`.
+fn answer(stream: TcpStream, root: &Path, isolation: bool) -> std::io::Result<()> {
     let mut reader = BufReader::new(stream.try_clone()?);
     let mut request_line = String::new();
     reader.read_line(&mut request_line)?;
@@ -73,6 +79,7 @@ fn answer(stream: TcpStream, root: &Path) -> std::io::Result<()> {
     let mut parts = request_line.split_whitespace();
     let (method, target) = (parts.next().unwrap_or(""), parts.next().unwrap_or(""));
     let mut stream = stream;
+    let headers = if isolation { ISOLATION } else { "" };
     if method != "GET" && method != "HEAD" {
         return respond(
             &mut stream,
@@ -80,18 +87,27 @@ fn answer(stream: TcpStream, root: &Path) -> std::io::Result<()> {
             "text/plain",
             b"GET or HEAD only\n",
             method == "HEAD",
+            headers,
         );
     }
     let head = method == "HEAD";
     match file_of(root, target) {
         Some(path) => match std::fs::read(&path) {
-            Ok(body) => respond(&mut stream, "200 OK", content_type(&path), &body, head),
+            Ok(body) => respond(
+                &mut stream,
+                "200 OK",
+                content_type(&path),
+                &body,
+                head,
+                headers,
+            ),
             Err(_) => respond(
                 &mut stream,
                 "404 Not Found",
                 "text/plain",
                 b"not found\n",
                 head,
+                headers,
             ),
         },
         None => respond(
@@ -100,6 +116,7 @@ fn answer(stream: TcpStream, root: &Path) -> std::io::Result<()> {
             "text/plain",
             b"not found\n",
             head,
+            headers,
         ),
     }
 }
@@ -142,20 +159,25 @@ pub fn content_type(path: &Path) -> &'static str {
     }
 }
 
+/// The headers that make the page cross-origin isolated.
+const ISOLATION: &str = "Cross-Origin-Opener-Policy: same-origin\r\n\
+                         Cross-Origin-Embedder-Policy: require-corp\r\n";
+
+/// Writes the answer; `headers` are more header lines, each ending in CRLF.
 fn respond(
     stream: &mut TcpStream,
     status: &str,
     content_type: &str,
     body: &[u8],
     head: bool,
+    headers: &str,
 ) -> std::io::Result<()> {
     write!(
         stream,
         "HTTP/1.1 {status}\r\n\
          Content-Type: {content_type}\r\n\
          Content-Length: {}\r\n\
-         Cross-Origin-Opener-Policy: same-origin\r\n\
-         Cross-Origin-Embedder-Policy: require-corp\r\n\
+         {headers}\
          Cache-Control: no-cache\r\n\
          Connection: close\r\n\r\n",
         body.len()

@@ -11,6 +11,12 @@
 #[cfg(target_arch = "wasm32")]
 use std::sync::{Arc, Mutex};
 
+/// A web page without Web Workers (built without the `web-threads`
+/// feature, for a page that is not cross-origin isolated): a job runs at
+/// once, on the page's thread, and the viewer renders between frames
+/// (`ProgressiveRenderer::run_between_frames`).
+pub const ONE_THREAD: bool = cfg!(all(target_arch = "wasm32", not(feature = "web-threads")));
+
 /// Work running in the background, whose result is taken once.
 pub struct Job<T> {
     #[cfg(not(target_arch = "wasm32"))]
@@ -37,11 +43,15 @@ pub fn spawn<T: Send + 'static>(name: &str, work: impl FnOnce() -> T + Send + 's
         let result = Arc::new(Mutex::new(None));
         let finished = Arc::new(std::sync::atomic::AtomicBool::new(false));
         let (slot, done) = (Arc::clone(&result), Arc::clone(&finished));
-        rayon::spawn(move || {
+        let run = move || {
             let value = work();
             *slot.lock().unwrap_or_else(|p| p.into_inner()) = Some(value);
             done.store(true, std::sync::atomic::Ordering::Release);
-        });
+        };
+        #[cfg(feature = "web-threads")]
+        rayon::spawn(run);
+        #[cfg(not(feature = "web-threads"))]
+        run();
         Job { result, finished }
     }
 }

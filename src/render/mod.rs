@@ -28,7 +28,7 @@ use crate::platform::time::Instant;
 use crate::render::adaptive::terms_to_sample;
 use crate::render::context::RenderContext;
 use crate::render::film::Film;
-use crate::render::settings::{RenderSettings, Term};
+use crate::render::settings::{RenderSettings, Term, TermSet};
 use crate::transport::TermRadiance;
 use crate::transport::counts::RayCounts;
 use crate::transport::sampler::SampleStream;
@@ -90,45 +90,20 @@ pub fn render_pass_cancellable(
     buffer: &mut PassBuffer,
     cancel: &AtomicBool,
 ) -> Option<RayCounts> {
+    let mut partial = PartialPass::new(context, film, pass);
     let width = film.width as usize;
-    let terms = context.settings.terms;
     buffer
         .samples
         .resize(film.pixel_count(), [Vec3::ZERO; Term::COUNT]);
-    // adaptive sampling: the terms each pixel still needs (None: all, everywhere)
-    let needed = context
-        .settings
-        .adaptive
-        .as_ref()
-        .and_then(|adaptive| terms_to_sample(film, terms, adaptive));
     let counts = buffer
         .samples
         .par_chunks_mut(width * TILE_ROWS)
         .enumerate()
         .map(|(tile, pixels)| {
-            let mut counts = RayCounts::default();
             if cancel.load(Ordering::Relaxed) {
-                return counts;
+                return RayCounts::default();
             }
-            for (offset, sample) in pixels.iter_mut().enumerate() {
-                let index = tile * width * TILE_ROWS + offset;
-                let (x, y) = ((index % width) as u32, (index / width) as u32);
-                let pixel_terms = match &needed {
-                    Some(needed) => {
-                        let stopped = terms.iter().filter(|&t| !needed[index].contains(t));
-                        counts.skipped.converged += stopped.count() as u64;
-                        needed[index]
-                    }
-                    None => terms,
-                };
-                if pixel_terms.is_empty() {
-                    *sample = [Vec3::ZERO; Term::COUNT];
-                    continue;
-                }
-                let stream = sample_stream(&context.settings, index as u64, pass);
-                *sample = context.sample_pixel_terms(x, y, &stream, &mut counts, pixel_terms);
-            }
-            counts
+            partial.render_tile(context, width, tile, pixels)
         })
         .reduce(RayCounts::default, |mut a, b| {
             a.add(&b);
@@ -137,11 +112,106 @@ pub fn render_pass_cancellable(
     if cancel.load(Ordering::Relaxed) {
         return None;
     }
-    match &needed {
-        Some(needed) => film.add_pass_where(terms, pass, &buffer.samples, needed),
-        None => film.add_pass(terms, pass, &buffer.samples),
+    partial.counts = counts;
+    Some(partial.finish(context, film, buffer))
+}
+
+/// A pass rendered a few tiles at a time, on one thread: a page without
+/// Web Workers renders between its frames ([`render_pass_until`]).
+pub struct PartialPass {
+    pass: u32,
+    /// Adaptive sampling: the terms each pixel still needs (None: all, everywhere).
+    needed: Option<Vec<TermSet>>,
+    next_tile: usize,
+    counts: RayCounts,
+}
+
+impl PartialPass {
+    /// Pass `pass` of `film`, no tile rendered yet.
+    pub fn new(context: &RenderContext, film: &Film, pass: u32) -> Self {
+        let terms = context.settings.terms;
+        let needed = context
+            .settings
+            .adaptive
+            .as_ref()
+            .and_then(|adaptive| terms_to_sample(film, terms, adaptive));
+        Self {
+            pass,
+            needed,
+            next_tile: 0,
+            counts: RayCounts::default(),
+        }
     }
-    Some(counts)
+
+    /// Tile `tile` (its `pixels` of the pass's samples): one sample each.
+    fn render_tile(
+        &self,
+        context: &RenderContext,
+        width: usize,
+        tile: usize,
+        pixels: &mut [TermRadiance],
+    ) -> RayCounts {
+        let terms = context.settings.terms;
+        let mut counts = RayCounts::default();
+        for (offset, sample) in pixels.iter_mut().enumerate() {
+            let index = tile * width * TILE_ROWS + offset;
+            let (x, y) = ((index % width) as u32, (index / width) as u32);
+            let pixel_terms = match &self.needed {
+                Some(needed) => {
+                    let stopped = terms.iter().filter(|&t| !needed[index].contains(t));
+                    counts.skipped.converged += stopped.count() as u64;
+                    needed[index]
+                }
+                None => terms,
+            };
+            if pixel_terms.is_empty() {
+                *sample = [Vec3::ZERO; Term::COUNT];
+                continue;
+            }
+            let stream = sample_stream(&context.settings, index as u64, self.pass);
+            *sample = context.sample_pixel_terms(x, y, &stream, &mut counts, pixel_terms);
+        }
+        counts
+    }
+
+    /// Adds the pass's samples to `film`; what it traced.
+    fn finish(&self, context: &RenderContext, film: &mut Film, buffer: &PassBuffer) -> RayCounts {
+        let terms = context.settings.terms;
+        match &self.needed {
+            Some(needed) => film.add_pass_where(terms, self.pass, &buffer.samples, needed),
+            None => film.add_pass(terms, self.pass, &buffer.samples),
+        }
+        self.counts
+    }
+}
+
+/// Renders tiles of `partial`, in order, until `deadline` has passed (at
+/// least one tile); once the last is done, adds the pass to `film` (the
+/// same film as [`render_pass`]'s) and returns what it traced.
+pub fn render_pass_until(
+    context: &RenderContext,
+    film: &mut Film,
+    partial: &mut PartialPass,
+    buffer: &mut PassBuffer,
+    deadline: Instant,
+) -> Option<RayCounts> {
+    let width = film.width as usize;
+    buffer
+        .samples
+        .resize(film.pixel_count(), [Vec3::ZERO; Term::COUNT]);
+    let tiles = film.pixel_count().div_ceil(width * TILE_ROWS);
+    while partial.next_tile < tiles {
+        let tile = partial.next_tile;
+        let rows =
+            tile * width * TILE_ROWS..((tile + 1) * width * TILE_ROWS).min(film.pixel_count());
+        let counts = partial.render_tile(context, width, tile, &mut buffer.samples[rows]);
+        partial.counts.add(&counts);
+        partial.next_tile += 1;
+        if partial.next_tile < tiles && Instant::now() >= deadline {
+            return None;
+        }
+    }
+    Some(partial.finish(context, film, buffer))
 }
 
 /// Renders until `budget` is spent (at least one pass), calling `progress`

@@ -24,7 +24,10 @@
 //! The worker knows nothing of the GUI: it calls a `repaint` closure after
 //! each publication. It renders on rayon's global pool (all cores), or on a
 //! pool of its own when given a thread count, so that two workers can share
-//! the machine equally (the viewer's equal-time comparison).
+//! the machine equally (the viewer's equal-time comparison). On a web page
+//! without Web Workers ([`threads::ONE_THREAD`]) there is no worker thread:
+//! the page calls [`ProgressiveRenderer::run_between_frames`] each frame,
+//! which does the same work a few tiles at a time.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard, Weak};
@@ -36,7 +39,7 @@ use crate::platform::time::Instant;
 use crate::render::context::RenderContext;
 use crate::render::film::Film;
 use crate::render::settings::{RenderSettings, Term, TermSet};
-use crate::render::{PassBuffer, render_pass_cancellable};
+use crate::render::{PartialPass, PassBuffer, render_pass_cancellable, render_pass_until};
 use crate::scene::{Camera, Scene};
 use crate::transport::continuations::Continuations;
 use crate::transport::counts::RayCounts;
@@ -146,6 +149,8 @@ struct Shared {
 pub struct ProgressiveRenderer {
     shared: Arc<Shared>,
     thread: Option<Job<()>>,
+    /// On a page with one thread, the worker the page runs between frames.
+    between_frames: Option<Mutex<Worker>>,
 }
 
 fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
@@ -176,15 +181,49 @@ impl ProgressiveRenderer {
             snapshot: Mutex::new(Arc::new(Snapshot::default())),
             film: Mutex::new(None),
         });
-        let worker_shared = Arc::clone(&shared);
+        let worker = Worker::new(Arc::clone(&shared), Box::new(repaint));
+        if threads::ONE_THREAD {
+            return Self {
+                shared,
+                thread: None,
+                between_frames: Some(Mutex::new(worker)),
+            };
+        }
         let thread = threads::spawn("lumiere render", move || {
-            let worker = Worker::new(worker_shared, Box::new(repaint));
             let pool = threads.and_then(|threads| threads::pool(threads, "lumiere render"));
             threads::install(pool.as_ref(), || worker.run());
         });
         Self {
             shared,
             thread: Some(thread),
+            between_frames: None,
+        }
+    }
+
+    /// On a page with one thread ([`threads::ONE_THREAD`]), the worker's
+    /// work until `budget` has passed: the latest request, then the
+    /// preview, the pilot or tiles of the next pass. True while work
+    /// remains (the page asks for another frame). Elsewhere the worker has
+    /// a thread of its own, and this does nothing.
+    pub fn run_between_frames(&self, budget: Duration) -> bool {
+        let Some(worker) = &self.between_frames else {
+            return false;
+        };
+        let mut worker = lock(worker);
+        let deadline = Instant::now() + budget;
+        loop {
+            let request = lock(&self.shared.mailbox).request.take();
+            self.shared.cancel.store(false, Ordering::Relaxed);
+            if let Some(request) = request {
+                worker.apply(request);
+            }
+            if worker.is_idle() {
+                return false;
+            }
+            worker.step(Some(deadline));
+            if Instant::now() >= deadline {
+                return true;
+            }
         }
     }
 
@@ -245,6 +284,8 @@ struct Current {
     pixel_samples: u64,
     /// Adaptive sampling has stopped every pixel: the last pass traced nothing.
     converged: bool,
+    /// Between frames (one thread): the pass under way, some tiles done.
+    partial: Option<PartialPass>,
 }
 
 impl Current {
@@ -305,7 +346,7 @@ impl Worker {
                 self.apply(request);
             }
             if !self.is_idle() {
-                self.step();
+                self.step(None);
             }
         }
     }
@@ -349,6 +390,7 @@ impl Worker {
             current.rays = RayCounts::default();
             current.pixel_samples = 0;
             current.converged = false;
+            current.partial = None;
             current.request = request;
             self.restarts += 1;
         } else {
@@ -383,11 +425,13 @@ impl Worker {
             rays: RayCounts::default(),
             pixel_samples: 0,
             converged: false,
+            partial: None,
         });
     }
 
-    /// One unit of work: the preview after a restart, else one full pass.
-    fn step(&mut self) {
+    /// One unit of work: the preview after a restart, else one full pass
+    /// (with a `deadline`: tiles of it until then).
+    fn step(&mut self, deadline: Option<Instant>) {
         let Some(current) = &mut self.current else {
             return;
         };
@@ -406,13 +450,27 @@ impl Worker {
             current.needs_pilot = false;
         }
         let mut film = lock(&current.film);
-        let pass = render_pass_cancellable(
-            &current.context,
-            &mut film,
-            current.next_sample,
-            &mut self.buffer,
-            &self.shared.cancel,
-        );
+        let pass = match deadline {
+            None => render_pass_cancellable(
+                &current.context,
+                &mut film,
+                current.next_sample,
+                &mut self.buffer,
+                &self.shared.cancel,
+            ),
+            Some(deadline) => {
+                let context = &current.context;
+                let partial = current
+                    .partial
+                    .get_or_insert_with(|| PartialPass::new(context, &film, current.next_sample));
+                let pass =
+                    render_pass_until(context, &mut film, partial, &mut self.buffer, deadline);
+                if pass.is_some() {
+                    current.partial = None;
+                }
+                pass
+            }
+        };
         drop(film);
         current.elapsed += start.elapsed();
         if let Some(counts) = pass {

@@ -321,9 +321,15 @@ pub struct Served {
 
 impl Served {
     pub fn start(folder: &Path) -> Self {
+        Self::start_with(folder, &[])
+    }
+
+    /// `lumiere serve --port 0 FOLDER` with more `options`.
+    pub fn start_with(folder: &Path, options: &[&str]) -> Self {
         use std::io::BufRead;
         let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_lumiere"))
             .args(["serve", "--port", "0"])
+            .args(options)
             .arg(folder)
             .stdout(std::process::Stdio::piped())
             .spawn()

@@ -12,6 +12,7 @@
 //   {"key": KEY}      presses a key on the canvas ("Digit0" toggles L0)
 //   {"reload": true}  reloads the page
 //   {"save": N}       presses Ctrl+S and waits for N files in LUMIERE_DOWNLOADS
+//   {"click": CSS}    clicks the page's element CSS (not the canvas)
 // and {"shot": FILE} in an action writes a screenshot once it is done.
 //
 // LUMIERE_NODE_MODULES names the folder whose node_modules holds
@@ -92,6 +93,9 @@ try {
     } else if (action.reload) {
       await page.reload({ waitUntil: 'load' });
       lines.push('reloaded');
+    } else if (action.click) {
+      await page.click(action.click);
+      lines.push(`clicked ${action.click}`);
     } else if (action.save) {
       await page.focus('#lumiere');
       await page.keyboard.down('Control');
@@ -102,7 +106,7 @@ try {
       lines.push(`downloaded ${done().sort().join(' ')}`);
       if (done().length < action.save) failed = `only ${done().length} of ${action.save} files downloaded`;
     }
-    if (!action.save) {
+    if (!action.save && !action.click) {
       expected += 1;
       await wait(expected);
     }
