@@ -261,3 +261,57 @@ fn term_images_come_with_the_sum_and_do_not_restart() {
     assert!(hidden.term_images[Term::L2.index()].is_some());
     assert_eq!(hidden.restarts, first.restarts);
 }
+
+/// Without a thread of its own (a web page with one thread), the worker
+/// renders a few tiles per call and ends with the film a worker thread
+/// renders, bit for bit; a term hidden and shown again in the middle of a
+/// pass starts that pass again rather than keep tiles of other terms.
+#[test]
+fn between_frames_the_worker_renders_the_same_film_a_few_tiles_at_a_time() {
+    let mut request = request();
+    request.stop_at_spp = Some(3);
+    let threaded = ProgressiveRenderer::spawn(request.clone(), || {});
+    let expected = wait_for(&threaded, "3 spp", |s| {
+        s.idle && !s.preview && s.samples_per_pixel() == 3
+    });
+    assert!(
+        ProgressiveRenderer::between_frames(request.clone(), || {})
+            .snapshot()
+            .radiance
+            .is_empty(),
+        "nothing is rendered before the first call"
+    );
+    let renderer = ProgressiveRenderer::between_frames(request.clone(), || {});
+    // no budget: one step per call (the preview, then one band of 4 rows)
+    let mut calls = 0;
+    while renderer.run_between_frames(Duration::ZERO) {
+        calls += 1;
+        assert!(calls < 10_000, "the worker never finishes");
+        // in the middle of the second pass
+        if calls == 12 || calls == 14 {
+            let mut changed = request.clone();
+            changed.settings.terms = request.settings.terms.with(Term::L2, calls == 14);
+            renderer.request(changed);
+        }
+    }
+    let got = renderer.snapshot();
+    let bands = 36 / 4;
+    assert_eq!(
+        calls,
+        1 + 3 * bands + 2 + 2,
+        "the preview, 3 passes, two passes begun again"
+    );
+    assert!(got.idle && !got.preview);
+    assert_eq!(got.term_samples, expected.term_samples);
+    assert_eq!(
+        got.continuations, expected.continuations,
+        "the pilot's choice"
+    );
+    let bits = |s: &Snapshot| -> Vec<[u32; 4]> {
+        s.radiance.iter().map(|p| p.map(f32::to_bits)).collect()
+    };
+    assert!(
+        bits(&got) == bits(&expected),
+        "the film rendered between frames differs from the worker thread's"
+    );
+}

@@ -20,6 +20,11 @@ use eframe::egui;
 use super::LumiereApp;
 use crate::scene::Scene;
 
+/// Whether the viewer reads files by their paths: on the desktop; a page
+/// sees only the files the user drops or picks, so fields that take a
+/// path are not shown there.
+pub const READS_PATHS: bool = cfg!(not(target_arch = "wasm32"));
+
 /// What a drop brought.
 pub enum DroppedScene {
     /// A file on disk, by path.
@@ -71,9 +76,6 @@ impl Dropped {
             Some(DroppedScene::Loaded(name, scene))
         }
     }
-
-    /// Whether this platform has a file picker ([`Dropped::pick`]).
-    pub const HAS_PICKER: bool = cfg!(target_arch = "wasm32");
 
     /// In the browser, opens its file picker for a `.gltf`/`.glb`; the file
     /// chosen arrives through [`Dropped::take`] as a dropped one does.

@@ -51,17 +51,21 @@ pub fn lesson_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 })
                 .response
                 .on_hover_text("The built-in lessons: the course's lecture, step by step");
-            ui.horizontal(|ui| {
-                let field = ui.add(
-                    egui::TextEdit::singleline(&mut app.lesson.file_field)
-                        .hint_text("lesson.toml")
-                        .desired_width(150.0),
-                );
-                let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-                if (ui.button("Open").clicked() || enter) && !app.lesson.file_field.is_empty() {
-                    chosen = Some(app.lesson.file_field.clone());
-                }
-            });
+            // a lesson file of one's own, by its path (not in a browser)
+            if super::files::READS_PATHS {
+                ui.horizontal(|ui| {
+                    let field = ui.add(
+                        egui::TextEdit::singleline(&mut app.lesson.file_field)
+                            .hint_text("lesson.toml")
+                            .desired_width(150.0),
+                    );
+                    let enter =
+                        field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+                    if (ui.button("Open").clicked() || enter) && !app.lesson.file_field.is_empty() {
+                        chosen = Some(app.lesson.file_field.clone());
+                    }
+                });
+            }
             if let Some(name) = chosen {
                 // a lesson that cannot be read leaves everything as it is
                 match Lesson::load(&name) {

@@ -695,14 +695,14 @@ fn render_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             );
             ui.add(egui::DragValue::new(&mut settings.seed).prefix("seed "));
             ui.checkbox(&mut app.state.per_term_exr, "also one EXR per term");
-            if cfg!(target_arch = "wasm32") {
-                ui.label("saved files go to the browser's downloads");
-            } else {
+            if super::files::READS_PATHS {
                 ui.horizontal(|ui| {
                     let label = ui.label("save to");
                     ui.text_edit_singleline(&mut app.state.export_dir)
                         .labelled_by(label.id);
                 });
+            } else {
+                ui.label("saved files go to the browser's downloads");
             }
         });
 }

@@ -228,20 +228,23 @@ pub fn error_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
         .default_open(app.reference.is_some())
         .show(ui, |ui| {
             capture_ui(app, ui);
-            ui.horizontal(|ui| {
-                let label = ui.label("EXR");
-                let field = ui
-                    .text_edit_singleline(&mut app.errors.exr_field)
-                    .labelled_by(label.id)
-                    .on_hover_text("A linear EXR of the current view, its size");
-                let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-                if ui.button("Load EXR").clicked() || enter {
-                    let path = app.errors.exr_field.clone();
-                    if let Err(e) = load_reference_exr(app, &path) {
-                        app.message = Some(format!("error: {e}"));
+            // a reference EXR by its path (not in a browser)
+            if super::files::READS_PATHS {
+                ui.horizontal(|ui| {
+                    let label = ui.label("EXR");
+                    let field = ui
+                        .text_edit_singleline(&mut app.errors.exr_field)
+                        .labelled_by(label.id)
+                        .on_hover_text("A linear EXR of the current view, its size");
+                    let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+                    if ui.button("Load EXR").clicked() || enter {
+                        let path = app.errors.exr_field.clone();
+                        if let Err(e) = load_reference_exr(app, &path) {
+                            app.message = Some(format!("error: {e}"));
+                        }
                     }
-                }
-            });
+                });
+            }
             readout_ui(app, ui);
             ui.horizontal(|ui| {
                 ui.checkbox(&mut app.errors.show_plot, "Convergence plot");

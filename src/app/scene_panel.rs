@@ -5,12 +5,11 @@
 use eframe::egui;
 
 use super::LumiereApp;
-use super::files::Dropped;
 
 /// Ctrl+O: in the browser, its file picker; on the desktop, the Scene
 /// group opened on its file field.
 pub fn open_file(app: &mut LumiereApp) {
-    if Dropped::HAS_PICKER {
+    if !super::files::READS_PATHS {
         app.dropped.pick();
     } else {
         app.open_file_requested = true;
@@ -47,7 +46,7 @@ pub fn scene_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             if let Some(name) = chosen {
                 app.load_scene(name);
             }
-            if Dropped::HAS_PICKER {
+            if !super::files::READS_PATHS {
                 if ui
                     .button("Open a glTF file…")
                     .on_hover_text(

@@ -171,24 +171,11 @@ impl ProgressiveRenderer {
         threads: Option<usize>,
         repaint: impl Fn() + Send + 'static,
     ) -> Self {
-        let shared = Arc::new(Shared {
-            mailbox: Mutex::new(Mailbox {
-                request: Some(request),
-                quit: false,
-            }),
-            wake: Condvar::new(),
-            cancel: AtomicBool::new(false),
-            snapshot: Mutex::new(Arc::new(Snapshot::default())),
-            film: Mutex::new(None),
-        });
-        let worker = Worker::new(Arc::clone(&shared), Box::new(repaint));
         if threads::ONE_THREAD {
-            return Self {
-                shared,
-                thread: None,
-                between_frames: Some(Mutex::new(worker)),
-            };
+            return Self::between_frames(request, repaint);
         }
+        let shared = Self::shared(request);
+        let worker = Worker::new(Arc::clone(&shared), Box::new(repaint));
         let thread = threads::spawn("lumiere render", move || {
             let pool = threads.and_then(|threads| threads::pool(threads, "lumiere render"));
             threads::install(pool.as_ref(), || worker.run());
@@ -200,11 +187,37 @@ impl ProgressiveRenderer {
         }
     }
 
-    /// On a page with one thread ([`threads::ONE_THREAD`]), the worker's
-    /// work until `budget` has passed: the latest request, then the
-    /// preview, the pilot or tiles of the next pass. True while work
-    /// remains (the page asks for another frame). Elsewhere the worker has
-    /// a thread of its own, and this does nothing.
+    /// The worker without a thread of its own, for a page with one thread
+    /// ([`threads::ONE_THREAD`], where [`spawn`](Self::spawn) gives this):
+    /// it renders only in [`run_between_frames`](Self::run_between_frames).
+    pub fn between_frames(request: ViewRequest, repaint: impl Fn() + Send + 'static) -> Self {
+        let shared = Self::shared(request);
+        let worker = Worker::new(Arc::clone(&shared), Box::new(repaint));
+        Self {
+            shared,
+            thread: None,
+            between_frames: Some(Mutex::new(worker)),
+        }
+    }
+
+    fn shared(request: ViewRequest) -> Arc<Shared> {
+        Arc::new(Shared {
+            mailbox: Mutex::new(Mailbox {
+                request: Some(request),
+                quit: false,
+            }),
+            wake: Condvar::new(),
+            cancel: AtomicBool::new(false),
+            snapshot: Mutex::new(Arc::new(Snapshot::default())),
+            film: Mutex::new(None),
+        })
+    }
+
+    /// Without a thread of its own ([`between_frames`](Self::between_frames)), the worker's
+    /// work until `budget` has passed (at least one step): the latest
+    /// request, then the preview, the pilot or tiles of the next pass. True
+    /// while work remains (the page asks for another frame). A worker with
+    /// a thread of its own renders there, and this does nothing.
     pub fn run_between_frames(&self, budget: Duration) -> bool {
         let Some(worker) = &self.between_frames else {
             return false;
@@ -395,6 +408,10 @@ impl Worker {
             self.restarts += 1;
         } else {
             // visible terms, pause, stop or the term images changed: no restart
+            if current.context.settings.terms != settings.terms {
+                // the tiles done hold the old terms' samples
+                current.partial = None;
+            }
             current.context.settings.terms = settings.terms;
             current.converged = false;
             current.request = request;

@@ -36,6 +36,7 @@ const actions = JSON.parse(process.env.LUMIERE_ACTIONS ?? '[]');
 const downloads = process.env.LUMIERE_DOWNLOADS;
 let reached = null;
 let failed = null;
+let started = Date.now();
 let reports = 0;
 const lines = [];
 try {
@@ -46,7 +47,8 @@ try {
     await session.send('Browser.setDownloadBehavior', { behavior: 'allow', downloadPath: downloads });
   }
   page.on('console', (message) => {
-    const line = `${message.type()}: ${message.text()}`;
+    // with the seconds since the page was asked for
+    const line = `${message.type()}: ${message.text()} [${((Date.now() - started) / 1000).toFixed(2)} s]`;
     lines.push(line);
     if (message.text().startsWith('lumiere: reached')) {
       reports += 1;
@@ -54,9 +56,9 @@ try {
     }
   });
   page.on('pageerror', (error) => lines.push(`pageerror: ${error.message}\n${error.stack ?? ''}`));
-  const started = Date.now();
   const pause = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
   const late = () => Date.now() - started > Number(timeout) * 1000;
+  started = Date.now();
   await page.goto(url, { waitUntil: 'load' });
   const wait = async (count) => {
     while (reports < count && !late()) await pause(250);
