@@ -292,3 +292,32 @@ fn a_page_that_is_not_cross_origin_isolated_renders_on_one_thread() {
         "the one-thread page's image differs from the render: worst {worst}/255, mean {mean:.3}"
     );
 }
+
+/// An address the viewer cannot open is said in the page, over the canvas,
+/// naming what is wrong: never a blank page.
+#[test]
+fn a_bad_address_is_explained_in_the_page() {
+    let Some((site, modules)) = site_or_skip() else {
+        return;
+    };
+    let server = Served::start(&site);
+    let url = format!("http://127.0.0.1:{}/?lesson=no-such-lesson", server.port);
+    let out = Command::new("node")
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/web/check.mjs"))
+        .arg(&url)
+        .arg(scratch("bad-address.png"))
+        .arg("20")
+        .env("LUMIERE_NODE_MODULES", &modules)
+        .output()
+        .expect("node (Node.js) runs the page's check");
+    let console = String::from_utf8_lossy(&out.stdout);
+    assert!(!out.status.success(), "{console}");
+    let status = console
+        .lines()
+        .find_map(|l| l.strip_prefix("status: "))
+        .unwrap_or_else(|| panic!("nothing said in the page:\n{console}"));
+    assert!(
+        status.starts_with("lumiere could not start") && status.contains("no-such-lesson"),
+        "{status}"
+    );
+}
