@@ -65,6 +65,7 @@ impl Dropped {
                 wasm_bindgen_futures::spawn_local(async move {
                     let bytes = file.bytes_async().await;
                     *lock(&inbox) = Some((name, bytes));
+                    crate::platform::threads::announce();
                 });
             }
             let (name, bytes) = lock(&self.inbox).take()?;
@@ -252,6 +253,7 @@ mod web {
                     .map(|buffer| js_sys::Uint8Array::new(&buffer).to_vec())
                     .map_err(|e| format!("{name}: cannot read the file: {e:?}"));
                 *lock(&inbox) = Some((name, bytes));
+                crate::platform::threads::announce();
             });
         });
         input.set_onchange(Some(on_change.unchecked_ref()));

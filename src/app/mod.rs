@@ -268,6 +268,7 @@ impl LumiereApp {
             term_images: false,
             film: 0,
         };
+        waker::install(&ctx);
         let waker = waker::Waker::new(&ctx);
         let renderer = ProgressiveRenderer::spawn(request.clone(), move || waker.wake());
         let mut probe = probe_view::ProbeState::default();
@@ -657,7 +658,6 @@ impl eframe::App for LumiereApp {
             bench.frame_started(started);
         }
         let ctx = ui.ctx().clone();
-        waker::poll(&ctx);
         files::open_dropped(self, &ctx);
         files::collect_exports(self);
         panels::shortcuts(self, &ctx);

@@ -17,6 +17,30 @@ use std::sync::{Arc, Mutex};
 /// (`ProgressiveRenderer::run_between_frames`).
 pub const ONE_THREAD: bool = cfg!(all(target_arch = "wasm32", not(feature = "web-threads")));
 
+/// Set when background work has a result to show (in the browser).
+#[cfg(target_arch = "wasm32")]
+static NEWS: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Says, from any thread, that background work has a result to show. In
+/// the browser only the page's thread may ask for a frame, and it asks
+/// when [`take_news`] says so; on the desktop callers ask egui
+/// themselves, and this does nothing.
+pub fn announce() {
+    #[cfg(target_arch = "wasm32")]
+    NEWS.store(true, std::sync::atomic::Ordering::Release);
+}
+
+/// Whether anything was announced since the last call (always false on
+/// the desktop).
+pub fn take_news() -> bool {
+    #[cfg(target_arch = "wasm32")]
+    {
+        NEWS.swap(false, std::sync::atomic::Ordering::AcqRel)
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    false
+}
+
 /// Work running in the background, whose result is taken once.
 pub struct Job<T> {
     #[cfg(not(target_arch = "wasm32"))]
@@ -47,6 +71,7 @@ pub fn spawn<T: Send + 'static>(name: &str, work: impl FnOnce() -> T + Send + 's
             let value = work();
             *slot.lock().unwrap_or_else(|p| p.into_inner()) = Some(value);
             done.store(true, std::sync::atomic::Ordering::Release);
+            announce();
         };
         #[cfg(feature = "web-threads")]
         rayon::spawn(run);
