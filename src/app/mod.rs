@@ -189,6 +189,8 @@ pub struct LumiereApp {
     dropped: files::Dropped,
     /// Ctrl+O on the desktop: the Scene group opens on its file field.
     open_file_requested: bool,
+    /// On a page with one thread, when the last render between frames ended.
+    rendered_until: Option<crate::platform::time::Instant>,
     /// The converged image errors are measured against (and differences drawn from).
     pub reference: Option<Arc<ReferenceImage>>,
     /// What the reference is valid for, its capture, the errors and curves.
@@ -306,6 +308,7 @@ impl LumiereApp {
             exports: Vec::new(),
             dropped: files::Dropped::default(),
             open_file_requested: false,
+            rendered_until: None,
             reference: None,
             errors: reference::ErrorTracking::default(),
             compare: split::Compare::default(),
@@ -636,15 +639,21 @@ impl LumiereApp {
         }
     }
 
-    /// On a page with one thread, the renderers' work for this frame (about
-    /// 25 ms, which leaves the page responsive), and another frame while
-    /// work remains; elsewhere their threads render and this does nothing.
+    /// On a page with one thread, the renderers' work for this frame, and
+    /// another frame while work remains; elsewhere their threads render
+    /// and this does nothing. The render takes three quarters of the time:
+    /// three times what the page spent since the last render (drawing,
+    /// waiting for the screen), from 25 to 200 ms.
     fn render_between_frames(&mut self, ctx: &egui::Context) {
-        const BUDGET: std::time::Duration = std::time::Duration::from_millis(25);
-        let mut more = self.renderer.run_between_frames(BUDGET);
+        use std::time::Duration;
+        let started = crate::platform::time::Instant::now();
+        let outside = self.rendered_until.map_or(Duration::ZERO, |end| started - end);
+        let budget = (3 * outside).clamp(Duration::from_millis(25), Duration::from_millis(200));
+        let mut more = self.renderer.run_between_frames(budget);
         if let Some(b) = &self.compare.renderer {
-            more |= b.run_between_frames(BUDGET);
+            more |= b.run_between_frames(budget);
         }
+        self.rendered_until = more.then(crate::platform::time::Instant::now);
         if more {
             ctx.request_repaint();
         }
