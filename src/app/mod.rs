@@ -647,7 +647,9 @@ impl LumiereApp {
     fn render_between_frames(&mut self, ctx: &egui::Context) {
         use std::time::Duration;
         let started = crate::platform::time::Instant::now();
-        let outside = self.rendered_until.map_or(Duration::ZERO, |end| started - end);
+        let outside = self
+            .rendered_until
+            .map_or(Duration::ZERO, |end| started - end);
         let budget = (3 * outside).clamp(Duration::from_millis(25), Duration::from_millis(200));
         let mut more = self.renderer.run_between_frames(budget);
         if let Some(b) = &self.compare.renderer {
