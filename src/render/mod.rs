@@ -3,9 +3,10 @@
 //! Pass s draws sample s of every pixel; the sample's random numbers come from
 //! (sampler, seed, pixel, s) only, so the film is bit-identical whatever the
 //! number of threads or the order in which tiles finish. Tiles are bands of
-//! rows, handed to rayon's work-stealing pool. With adaptive sampling the
-//! film decides, before each pass, which terms each pixel still needs
-//! (`adaptive`); that too depends on the film alone.
+//! rows, handed to rayon's work-stealing pool (or, on a web page with one
+//! thread, rendered in order a few at a time: [`render_pass_until`]). With
+//! adaptive sampling the film decides, before each pass, which terms each
+//! pixel still needs (`adaptive`); that too depends on the film alone.
 
 pub mod adaptive;
 pub mod color;
@@ -202,9 +203,10 @@ pub fn render_pass_until(
     let tiles = film.pixel_count().div_ceil(width * TILE_ROWS);
     while partial.next_tile < tiles {
         let tile = partial.next_tile;
-        let rows =
+        // the tile's pixels, as `par_chunks_mut` cuts them
+        let pixels =
             tile * width * TILE_ROWS..((tile + 1) * width * TILE_ROWS).min(film.pixel_count());
-        let counts = partial.render_tile(context, width, tile, &mut buffer.samples[rows]);
+        let counts = partial.render_tile(context, width, tile, &mut buffer.samples[pixels]);
         partial.counts.add(&counts);
         partial.next_tile += 1;
         if partial.next_tile < tiles && Instant::now() >= deadline {
