@@ -138,7 +138,9 @@ fn the_page_renders_a_built_in_scene_a_lesson_step_and_a_dropped_gltf_as_lumiere
     let server = Served::start(&site);
 
     let shot = scratch("page.png");
-    let console = open_page(&server, &modules, "?spp=8", "[]", &shot);
+    // two workers: the viewer's render loop on one, both rendering
+    let console = open_page(&server, &modules, "?spp=8&threads=2", "[]", &shot);
+    assert!(console.contains("lumiere: 2 Web Workers"), "{console}");
     assert!(
         console.contains("lumiere: reached 8 samples per pixel"),
         "{console}"
