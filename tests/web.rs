@@ -42,6 +42,36 @@ fn scratch(name: &str) -> PathBuf {
     dir.join(name)
 }
 
+/// Runs `tests/web/check.mjs` on `url` (waiting at most `timeout` seconds)
+/// with `actions`, its downloads beside `screenshot`: whether it reached
+/// its samples, and what it printed.
+fn check_page(
+    url: &str,
+    modules: &Path,
+    actions: &str,
+    screenshot: &Path,
+    timeout: u32,
+) -> (bool, String) {
+    let downloads = downloads_of(screenshot);
+    std::fs::create_dir_all(&downloads).unwrap();
+    let out = Command::new("node")
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/web/check.mjs"))
+        .arg(url)
+        .arg(screenshot)
+        .arg(timeout.to_string())
+        .env("LUMIERE_NODE_MODULES", modules)
+        .env("LUMIERE_ACTIONS", actions)
+        .env("LUMIERE_DOWNLOADS", &downloads)
+        .output()
+        .expect("node (Node.js) runs the page's check");
+    let printed = format!(
+        "{}\n{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    (out.status.success(), printed)
+}
+
 /// Opens `query` on the served page and acts on it as `actions` say (the
 /// JSON list `tests/web/check.mjs` takes); the console's lines, after
 /// checking that the page reached its samples after each action and
@@ -54,22 +84,10 @@ fn open_page(
     screenshot: &Path,
 ) -> String {
     let url = format!("http://127.0.0.1:{}/{query}", server.port);
-    let downloads = downloads_of(screenshot);
-    std::fs::create_dir_all(&downloads).unwrap();
-    let out = Command::new("node")
-        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/web/check.mjs"))
-        .arg(&url)
-        .arg(screenshot)
-        .env("LUMIERE_NODE_MODULES", modules)
-        .env("LUMIERE_ACTIONS", actions)
-        .env("LUMIERE_DOWNLOADS", &downloads)
-        .output()
-        .expect("node (Node.js) runs the page's check");
-    let console = String::from_utf8_lossy(&out.stdout).into_owned();
+    let (reached, console) = check_page(&url, modules, actions, screenshot, 300);
     assert!(
-        out.status.success(),
-        "{url}: the page did not reach its samples\n{console}\n{}",
-        String::from_utf8_lossy(&out.stderr)
+        reached,
+        "{url}: the page did not reach its samples\n{console}"
     );
     let errors: Vec<&str> = console
         .lines()
@@ -304,16 +322,8 @@ fn a_bad_address_is_explained_in_the_page() {
     };
     let server = Served::start(&site);
     let url = format!("http://127.0.0.1:{}/?lesson=no-such-lesson", server.port);
-    let out = Command::new("node")
-        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/web/check.mjs"))
-        .arg(&url)
-        .arg(scratch("bad-address.png"))
-        .arg("20")
-        .env("LUMIERE_NODE_MODULES", &modules)
-        .output()
-        .expect("node (Node.js) runs the page's check");
-    let console = String::from_utf8_lossy(&out.stdout);
-    assert!(!out.status.success(), "{console}");
+    let (reached, console) = check_page(&url, &modules, "[]", &scratch("bad-address.png"), 20);
+    assert!(!reached, "{console}");
     let status = console
         .lines()
         .find_map(|l| l.strip_prefix("status: "))

@@ -91,25 +91,15 @@ fn answer(stream: TcpStream, root: &Path, isolation: bool) -> std::io::Result<()
         );
     }
     let head = method == "HEAD";
-    match file_of(root, target) {
-        Some(path) => match std::fs::read(&path) {
-            Ok(body) => respond(
-                &mut stream,
-                "200 OK",
-                content_type(&path),
-                &body,
-                head,
-                headers,
-            ),
-            Err(_) => respond(
-                &mut stream,
-                "404 Not Found",
-                "text/plain",
-                b"not found\n",
-                head,
-                headers,
-            ),
-        },
+    match file_of(root, target).and_then(|path| Some((std::fs::read(&path).ok()?, path))) {
+        Some((body, path)) => respond(
+            &mut stream,
+            "200 OK",
+            content_type(&path),
+            &body,
+            head,
+            headers,
+        ),
         None => respond(
             &mut stream,
             "404 Not Found",
