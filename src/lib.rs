@@ -6,16 +6,20 @@
 //! estimators and `docs/architecture.md` for how a sample flows through the
 //! modules below.
 //!
+//! The folders run in one direction, each importing only those above it in
+//! this table (`tests/architecture.rs` checks it):
+//!
 //! | folder | what it holds |
 //! |---|---|
+//! | [`platform`] | what differs in the browser: the clock, threads, the memory ceiling |
+//! | [`course`] | the course's vocabulary: the terms, the options, the render settings, colour |
 //! | [`scene`] | the scene as plain data, loaded from glTF or built in |
 //! | [`geometry`] | rays, robust offsets, the camera's rays, the BVH |
 //! | [`transport`] | the estimators of the terms: integrators, BRDFs, lights, sampling |
-//! | [`render`] | settings, the film, the render loop, the viewer's worker, export |
+//! | [`render`] | the film, the render loop, the viewer's worker, display settings, export |
 //! | [`analysis`] | error metrics, convergence, noise views, the probe, the path view |
 //! | [`lesson`] | the course's lessons: steps of settings, titles, formulas, captions |
 //! | [`tools`] | `lumiere bench`, `stress`, `strip` and the slides of `lesson --export` |
-//! | [`platform`] | what differs in the browser: the clock, threads |
 //! | `app` | the viewer (feature `gui`) |
 //!
 //! Rendering one term of a scene whose answer is known — the furnace, a
@@ -37,6 +41,7 @@
 pub mod analysis;
 #[cfg(feature = "gui")]
 pub mod app;
+pub mod course;
 pub mod geometry;
 pub mod lesson;
 pub mod platform;
@@ -45,8 +50,8 @@ pub mod scene;
 pub mod tools;
 pub mod transport;
 
-pub use render::context::RenderContext;
+pub use course::{BrdfOverride, LightMode, RenderSettings, Term, TermSet};
 pub use render::film::Film;
-pub use render::settings::{BrdfOverride, LightMode, RenderSettings, Term, TermSet};
 pub use scene::Scene;
 pub use scene::error::SceneError;
+pub use transport::context::RenderContext;

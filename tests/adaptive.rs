@@ -5,7 +5,7 @@
 mod common;
 
 use lumiere::analysis::probe::{MAX_PROBE_SAMPLES, probe_pixel};
-use lumiere::render::settings::Adaptive;
+use lumiere::course::Adaptive;
 use lumiere::render::{Budget, RenderStats, render};
 use lumiere::scene::builtin;
 use lumiere::{Film, RenderContext, RenderSettings, Term, TermSet};

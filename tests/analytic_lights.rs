@@ -8,8 +8,8 @@ use common::{add_floor, estimate, polygon_irradiance};
 
 use glam::Vec3;
 use lumiere::geometry::Ray;
-use lumiere::render::context::RenderContext;
 use lumiere::scene::{Material, Scene};
+use lumiere::transport::context::RenderContext;
 use lumiere::{LightMode, RenderSettings, Term, TermSet};
 
 const ALBEDO: f32 = 0.5;
@@ -215,7 +215,7 @@ fn directional_light_gives_e_cos_theta() {
 #[test]
 fn a_textured_emitter_is_read_where_the_light_is_sampled() {
     use glam::Vec2;
-    use lumiere::render::settings::LightSampling;
+    use lumiere::course::LightSampling;
     use lumiere::scene::{Texture, TextureRef};
 
     let center = Vec3::new(0.0, 0.0, HEIGHT);

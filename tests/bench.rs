@@ -9,8 +9,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Arc;
 
-use lumiere::render::settings::Choice;
-use lumiere::render::settings::{LightSampling, Sampler};
+use lumiere::course::Choice;
+use lumiere::course::{LightSampling, Sampler};
 use lumiere::render::{Budget, render};
 use lumiere::scene::{builtin, gltf};
 use lumiere::tools::bench::csv::{ErrorRow, parse_error_csv};
@@ -516,7 +516,7 @@ fn the_replay_traces_the_renderers_rays_and_finds_the_same_hits() {
 
 #[test]
 fn with_adaptive_sampling_every_curve_is_measured_uniform_and_adaptive() {
-    use lumiere::render::settings::Adaptive;
+    use lumiere::course::Adaptive;
     let adaptive = Adaptive {
         threshold: 0.01,
         min_samples: 128,
@@ -548,7 +548,7 @@ fn with_adaptive_sampling_every_curve_is_measured_uniform_and_adaptive() {
 /// `--lights point` pass to it; the estimator's settings change nothing.
 #[test]
 fn the_peer_renders_lumieres_overrides() {
-    use lumiere::render::settings::{BrdfOverride, LightMode};
+    use lumiere::course::{BrdfOverride, LightMode};
     use lumiere::tools::bench::peer::scene_overrides;
     let scene = builtin::cornell();
     let mut settings = RenderSettings {

@@ -10,7 +10,7 @@ use std::sync::atomic::AtomicBool;
 use lumiere::analysis::capture::{ReferenceCapture, ReferenceJob, ReferenceKey, reference_seed};
 use lumiere::analysis::convergence::log_log_slope;
 use lumiere::analysis::metrics::image_error;
-use lumiere::render::settings::{LightSampling, Sampler};
+use lumiere::course::{LightSampling, Sampler};
 use lumiere::render::{Budget, render};
 use lumiere::scene::builtin;
 use lumiere::{Film, RenderContext, Term, TermSet};

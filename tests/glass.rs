@@ -7,9 +7,9 @@ mod common;
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
+use lumiere::course::Integrator;
 use lumiere::geometry::Ray;
 use lumiere::geometry::accel::Hit;
-use lumiere::render::settings::Integrator;
 use lumiere::scene::Material;
 use lumiere::scene::builtin::{self, closed_box, furnace, uv_sphere};
 use lumiere::transport::sampler::SampleStream;

@@ -525,7 +525,7 @@ fn the_textured_cornell_box_reads_its_checker_in_linear_values() {
 #[test]
 fn the_glossy_cornell_box_maps_its_materials_onto_phong() {
     // the file the Mitsuba Phong check renders (tests/reference/README.md)
-    use lumiere::render::settings::RenderSettings;
+    use lumiere::course::RenderSettings;
     use lumiere::transport::brdf::Brdf;
     use lumiere::transport::surface::resolve_brdf;
     let scene = load(Path::new("tests/data/cornell-glossy.gltf")).unwrap();
@@ -573,7 +573,7 @@ fn the_glossy_cornell_box_maps_its_materials_onto_phong() {
 fn a_primitive_reads_each_texture_at_its_own_uv_set() {
     // the file the Mitsuba check of two uv sets renders (tests/reference/README.md):
     // the back wall glows with the checker at TEXCOORD_0 and reflects it at TEXCOORD_1
-    use lumiere::render::settings::RenderSettings;
+    use lumiere::course::RenderSettings;
     use lumiere::transport::brdf::Brdf;
     use lumiere::transport::surface::SurfacePoint;
     let scene = load(Path::new("tests/data/cornell-two-uv-sets.gltf")).unwrap();
@@ -639,7 +639,7 @@ fn glass_material(scene: &lumiere::Scene) -> &lumiere::scene::Material {
 /// material's own model), and the warnings for what is not modelled.
 #[test]
 fn transmission_and_ior_make_glass() {
-    use lumiere::render::settings::RenderSettings;
+    use lumiere::course::RenderSettings;
     use lumiere::scene::BrdfModel;
     use lumiere::transport::brdf::Brdf;
     use lumiere::transport::surface::{SurfacePoint, resolve_brdf};

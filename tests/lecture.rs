@@ -11,8 +11,8 @@ mod common;
 use std::path::Path;
 
 use glam::Vec3;
-use lumiere::render::settings::Choice;
-use lumiere::render::settings::{Adaptive, Integrator, LightSampling, Sampler};
+use lumiere::course::Choice;
+use lumiere::course::{Adaptive, Integrator, LightSampling, Sampler};
 use lumiere::render::{Budget, render};
 use lumiere::scene::builtin;
 use lumiere::scene::{Material, PunctualKind, PunctualLight};

@@ -7,8 +7,9 @@ mod common;
 use std::process::Command;
 
 use lumiere::BrdfOverride;
+use lumiere::course::{Integrator, LightMode, Sampler};
 use lumiere::lesson::{Lang, Lesson};
-use lumiere::render::settings::{Integrator, Layout, LightMode, Sampler};
+use lumiere::render::display::Layout;
 use lumiere::{Term, TermSet};
 
 fn lumiere() -> Command {

@@ -13,10 +13,10 @@ use std::sync::Arc;
 
 use common::{add_floor, assert_agrees, estimate};
 use glam::{DVec3, Vec3};
+use lumiere::course::{BrdfOverride, LightSampling, MisHeuristic};
 use lumiere::geometry::Ray;
-use lumiere::render::context::RenderContext;
-use lumiere::render::settings::{BrdfOverride, LightSampling, MisHeuristic};
 use lumiere::scene::{Material, Scene};
+use lumiere::transport::context::RenderContext;
 use lumiere::{RenderSettings, Term, TermSet};
 
 /// The floor's base colour; the Phong override makes kd = ρ(1 − ks).

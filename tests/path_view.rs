@@ -5,8 +5,8 @@ mod common;
 use glam::{Affine3A, Vec2, Vec3};
 use lumiere::analysis::path_view::{RayRole, path_lines};
 use lumiere::analysis::probe::{MAX_PROBE_SAMPLES, probe_pixel};
+use lumiere::course::color::luminance;
 use lumiere::geometry::camera::CameraRays;
-use lumiere::render::color::luminance;
 use lumiere::render::{PassBuffer, render_pass};
 use lumiere::scene::{Camera, Projection, builtin};
 use lumiere::transport::path_log::SegmentKind;
@@ -279,7 +279,14 @@ fn refractions_through_glass_are_marked_in_the_path_view() {
         for sample in 0..16 {
             let stream = SampleStream::new(3, (y * 64 + x) as u64, sample);
             let mut log = PathLog::default();
-            context.trace_recorded(x, y, &stream, &mut RayCounts::default(), &mut log);
+            lumiere::transport::sample_pixel_logged(
+                &context,
+                x,
+                y,
+                &stream,
+                &mut RayCounts::default(),
+                &mut log,
+            );
             for line in path_lines(&log, &context.camera, TermSet::ALL) {
                 let SegmentKind::Bounce { refracted } = log.segments[line.segment].kind else {
                     assert!(!line.role.is_refracted());

@@ -184,7 +184,7 @@ fn stop_at_spp_stops_exactly_and_pause_holds() {
 /// not only its settings.
 #[test]
 fn a_change_of_what_the_lights_are_built_from_rebuilds_them() {
-    use lumiere::render::settings::SourceQuality;
+    use lumiere::course::SourceQuality;
     let mut request = request();
     let renderer = ProgressiveRenderer::spawn(request.clone(), || {});
     wait_for(&renderer, "2 spp", |s| s.samples_per_pixel() >= 2);

@@ -78,8 +78,8 @@ fn same_seed_same_image_for_any_thread_count() {
 /// adaptive sampling included.
 #[test]
 fn a_pass_rendered_tile_by_tile_gives_the_same_film() {
+    use lumiere::course::Adaptive;
     use lumiere::platform::time::Instant;
-    use lumiere::render::settings::Adaptive;
     use lumiere::render::{PartialPass, PassBuffer, render_pass, render_pass_until};
 
     let settings = RenderSettings {

@@ -21,8 +21,8 @@ use std::f64::consts::PI;
 
 use glam::{Vec2, Vec3};
 use lumiere::analysis::metrics::image_error;
-use lumiere::render::settings::Choice;
-use lumiere::render::settings::Sampler;
+use lumiere::course::Choice;
+use lumiere::course::Sampler;
 use lumiere::scene::builtin;
 use lumiere::transport::sampler::SampleStream;
 use lumiere::transport::warps::{

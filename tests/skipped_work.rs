@@ -6,8 +6,8 @@ use std::f64::consts::PI;
 
 use common::small;
 use glam::Vec3;
+use lumiere::course::LightSampling;
 use lumiere::geometry::accel::Hit;
-use lumiere::render::settings::LightSampling;
 use lumiere::render::{Budget, render};
 use lumiere::scene::builtin;
 use lumiere::transport::counts::RayCounts;
@@ -121,7 +121,14 @@ fn light_searches_that_meet_no_light_skip_the_scene_search_and_are_counted() {
         for sample in 0..16 {
             let stream = SampleStream::new(settings.seed, pixel as u64, sample);
             let mut rays = RayCounts::default();
-            context.sample_pixel(x, y, &stream, &mut rays);
+            lumiere::transport::sample_pixel(
+                &context,
+                x,
+                y,
+                &stream,
+                context.settings.terms,
+                &mut rays,
+            );
             common::assert_no_invalid_samples(&rays);
             searches += rays.bounce;
             scene_searches += rays.bounce - rays.skipped.scene_searches;

@@ -13,8 +13,8 @@ use std::sync::OnceLock;
 use image::codecs::gif::GifDecoder;
 use image::{AnimationDecoder, RgbImage};
 use lumiere::analysis::noise::{DisplayMode, NoiseView, false_colour};
+use lumiere::course::color::linear_to_srgb;
 use lumiere::lesson::{Lang, Lesson, StepView};
-use lumiere::render::color::linear_to_srgb;
 use lumiere::render::export::to_srgb8;
 use lumiere::render::{Budget, render};
 use lumiere::scene::builtin;
@@ -264,7 +264,7 @@ fn the_image_region_is_the_render_of_the_steps_settings_and_the_probe_draws_its_
                 i + 1
             );
             assert!(differing(&crop(&region, right), &crop(&direct, right)) > 0);
-        } else if view.display.layout == lumiere::render::settings::Layout::FourUp {
+        } else if view.display.layout == lumiere::render::display::Layout::FourUp {
             // four tiles, two by two: L0 (top left) is dark but for the light,
             // the sum (bottom right) is lit
             let (w, h) = (image.width / 2, image.height / 2);

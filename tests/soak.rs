@@ -6,10 +6,10 @@
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use lumiere::render::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
-use lumiere::render::settings::{
+use lumiere::course::{
     Adaptive, IndirectSampling, Integrator, LightSampling, Sampler, SourceQuality,
 };
+use lumiere::render::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
 use lumiere::scene::{Scene, builtin};
 use lumiere::transport::sources;
 use lumiere::{BrdfOverride, LightMode, RenderSettings, Term, TermSet};

@@ -8,10 +8,10 @@ mod common;
 use common::{add_floor, estimate, polygon_irradiance};
 
 use glam::Vec3;
+use lumiere::course::{Integrator, LightSampling, SourceQuality};
 use lumiere::geometry::Ray;
-use lumiere::render::context::RenderContext;
-use lumiere::render::settings::{Integrator, LightSampling, SourceQuality};
 use lumiere::scene::{Material, PunctualKind, PunctualLight, Scene};
+use lumiere::transport::context::RenderContext;
 use lumiere::transport::counts::RayCounts;
 use lumiere::transport::sampler::SampleStream;
 use lumiere::{RenderSettings, Term, TermSet};
@@ -232,7 +232,12 @@ fn every_source_gets_exactly_its_own_samples() {
         "{mean} vs {expected}"
     );
     let mut counts = RayCounts::default();
-    context.trace(ray_to_floor(x, y), &SampleStream::new(3, 0, 0), &mut counts);
+    lumiere::transport::trace(
+        &context,
+        ray_to_floor(x, y),
+        &SampleStream::new(3, 0, 0),
+        &mut counts,
+    );
     assert_eq!(counts.shadow, 4, "1 + 3 shadow rays");
     // sharing the same 4 samples by power picks the lights at random: noise
     let shared = RenderContext::new(

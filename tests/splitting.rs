@@ -9,11 +9,11 @@ use std::sync::Arc;
 
 use common::{add_floor, small};
 use glam::Vec3;
-use lumiere::render::context::RenderContext;
-use lumiere::render::settings::Sampler;
+use lumiere::course::Sampler;
 use lumiere::render::{Budget, render};
 use lumiere::scene::builtin;
 use lumiere::scene::{Camera, Material, Projection, Scene};
+use lumiere::transport::context::RenderContext;
 use lumiere::transport::counts::RayCounts;
 use lumiere::transport::sampler::SampleStream;
 use lumiere::transport::splitting::{SplitChoice, choose_continuations, choose_indirect_samples};
@@ -114,7 +114,7 @@ fn continuations_that_bring_nothing_are_not_split() {
         projection: Projection::Perspective { yfov: 1.0 },
     });
     let settings = RenderSettings {
-        light_sampling: lumiere::render::settings::LightSampling::Area,
+        light_sampling: lumiere::course::LightSampling::Area,
         ..small(32, 32, TermSet::COURSE)
     };
     let c = choice(scene, settings);
@@ -211,7 +211,14 @@ fn splitting_does_not_shorten_the_continuations() {
             for sample in 0..samples_per_pixel {
                 let stream = SampleStream::new(settings.seed, pixel, sample);
                 let mut rays = RayCounts::default();
-                context.sample_pixel(x, y, &stream, &mut rays);
+                lumiere::transport::sample_pixel(
+                    &context,
+                    x,
+                    y,
+                    &stream,
+                    context.settings.terms,
+                    &mut rays,
+                );
                 common::assert_no_invalid_samples(&rays);
                 assert_eq!(rays.camera, 1);
                 roulette += rays.skipped.roulette;
@@ -262,7 +269,7 @@ fn the_cornell_box_splits_its_dark_regions_more() {
 /// less noisy than with one.
 #[test]
 fn a_map_of_counts_keeps_the_mean_and_cuts_the_noise_where_it_splits() {
-    use lumiere::render::settings::Term;
+    use lumiere::course::Term;
     use lumiere::transport::continuations::{Continuations, SplitMap};
     let settings = small(32, 24, TermSet::COURSE);
     let scene = Arc::new(builtin::cornell());

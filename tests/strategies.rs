@@ -12,12 +12,12 @@ use common::{
     sphere_tessellation_error,
 };
 use glam::Vec3;
+use lumiere::course::Choice;
+use lumiere::course::{IndirectSampling, LightSampling, LightSelection, MisHeuristic};
 use lumiere::geometry::Ray;
-use lumiere::render::context::RenderContext;
-use lumiere::render::settings::Choice;
-use lumiere::render::settings::{IndirectSampling, LightSampling, LightSelection, MisHeuristic};
 use lumiere::scene::builtin::{self, furnace, point_in_sphere};
 use lumiere::scene::{Material, PunctualKind, PunctualLight, Scene};
+use lumiere::transport::context::RenderContext;
 use lumiere::transport::counts::RayCounts;
 use lumiere::transport::path_log::{PathLog, SegmentKind};
 use lumiere::transport::sampler::SampleStream;
@@ -478,7 +478,7 @@ fn block_pixels(film: &Film, term: Term, block: u32) -> Vec<Vec<f64>> {
             for y in by * block..(by + 1) * block {
                 for x in bx * block..(bx + 1) * block {
                     let i = (y * w + x) as usize;
-                    pixels.push(lumiere::render::color::luminance(buffer.mean(i).as_vec3()) as f64);
+                    pixels.push(lumiere::course::color::luminance(buffer.mean(i).as_vec3()) as f64);
                 }
             }
             blocks.push(pixels);
@@ -649,11 +649,24 @@ fn recorded_paths_add_up_to_the_sample() {
             for sample in 0..8 {
                 let stream = SampleStream::new(5, i as u64, sample);
                 let mut counts = RayCounts::default();
-                let plain = context.sample_pixel(x, y, &stream, &mut counts);
+                let plain = lumiere::transport::sample_pixel(
+                    &context,
+                    x,
+                    y,
+                    &stream,
+                    context.settings.terms,
+                    &mut counts,
+                );
                 let mut recorded_counts = RayCounts::default();
                 let mut log = PathLog::default();
-                let radiance =
-                    context.trace_recorded(x, y, &stream, &mut recorded_counts, &mut log);
+                let radiance = lumiere::transport::sample_pixel_logged(
+                    &context,
+                    x,
+                    y,
+                    &stream,
+                    &mut recorded_counts,
+                    &mut log,
+                );
                 assert_eq!(radiance, plain, "{}", describe(&settings));
                 assert_eq!(recorded_counts, counts);
                 common::assert_no_invalid_samples(&counts);

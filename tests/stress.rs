@@ -2,7 +2,7 @@
 //! negative sample reaches the film, no ray leaks out of a closed scene, and
 //! every known energy comes back within the noise (`src/tools/stress/`).
 
-use lumiere::render::settings::Choice;
+use lumiere::course::Choice;
 use lumiere::tools::stress::{Case, Effort, table};
 
 #[test]

@@ -8,7 +8,7 @@ use std::process::{Command, Output};
 
 use glam::Vec3;
 use image::RgbImage;
-use lumiere::render::color::srgb_to_linear;
+use lumiere::course::color::srgb_to_linear;
 use lumiere::render::export::to_srgb8;
 use lumiere::scene::builtin;
 use lumiere::tools::strip::{BAND_COLOR, StripLayout};

@@ -13,8 +13,8 @@ use lumiere::analysis::noise::DisplayMode;
 use lumiere::analysis::path_view::RayRole;
 use lumiere::app::LumiereApp;
 use lumiere::app::probe_view::PROBE_WINDOW_ID;
+use lumiere::course::Integrator;
 use lumiere::render::progressive::Snapshot;
-use lumiere::render::settings::Integrator;
 use lumiere::{BrdfOverride, LightMode, Term};
 
 #[path = "common/viewer.rs"]
@@ -278,7 +278,7 @@ fn expected_colour(app: &LumiereApp, x: u32, y: u32) -> [u8; 3] {
     let image = app.noise_image().expect("a noise view is shown");
     let linear = image.rgba[(y * 64 + x) as usize];
     std::array::from_fn(|c| {
-        (lumiere::render::color::linear_to_srgb(linear[c]) * 255.0).round() as u8
+        (lumiere::course::color::linear_to_srgb(linear[c]) * 255.0).round() as u8
     })
 }
 
@@ -292,7 +292,7 @@ fn display_modes_recolour_the_image_and_show_their_legend() {
     harness.state_mut().state.stop_at_spp = Some(8);
     // exposure and tonemap apply to the image only, never to false colour
     harness.state_mut().state.display.exposure = 1.5;
-    harness.state_mut().state.display.tonemap = lumiere::render::settings::Tonemap::Reinhard;
+    harness.state_mut().state.display.tonemap = lumiere::render::display::Tonemap::Reinhard;
     wait_for(&mut harness, "8 spp", |s| {
         s.idle && s.samples_per_pixel() >= 8
     });
@@ -393,7 +393,7 @@ fn the_difference_view_needs_a_reference_and_is_signed() {
     assert_eq!(image.range.0, -image.range.1, "a symmetric range");
     let film = app.snapshot();
     for (value, pixel) in image.values.iter().zip(&film.radiance) {
-        let y = lumiere::render::color::luminance(glam::Vec3::from_slice(&pixel[..3]));
+        let y = lumiere::course::color::luminance(glam::Vec3::from_slice(&pixel[..3]));
         assert!((value - (y - 0.1)).abs() < 1e-4);
     }
     assert!(image.values.iter().any(|&v| v < 0.0) && image.values.iter().any(|&v| v > 0.0));
@@ -561,7 +561,7 @@ fn path_view_draws_the_sample_rays(harness: &mut Harness<'static, LumiereApp>) {
 
 #[test]
 fn the_adaptive_checkbox_stops_converged_pixels_and_unticked_samples_all() {
-    use lumiere::render::settings::Adaptive;
+    use lumiere::course::Adaptive;
     let mut harness = harness();
     let before = wait_for(&mut harness, "a pass", |s| s.samples_per_pixel() >= 1);
     harness.get_by_label("adaptive").click();
@@ -663,7 +663,7 @@ fn light_units_follow_the_light_mode_and_the_power_stays() {
 /// switched off, and the Cornell box, whose only source it is, goes black.
 #[test]
 fn each_source_can_be_given_its_own_samples_or_switched_off() {
-    use lumiere::render::settings::SourceQuality;
+    use lumiere::course::SourceQuality;
     let mut harness = harness();
     harness.get_by_label("a quality for each source").click();
     harness.run_steps(2);
@@ -709,7 +709,7 @@ fn auto_exposure_brings_l2_alone_to_mid_grey() {
     let mean = shown
         .radiance
         .iter()
-        .map(|p| lumiere::render::color::luminance(glam::Vec3::new(p[0], p[1], p[2])) as f64)
+        .map(|p| lumiere::course::color::luminance(glam::Vec3::new(p[0], p[1], p[2])) as f64)
         .sum::<f64>()
         / shown.radiance.len() as f64;
     let expected = (0.18 / mean).log2() as f32;

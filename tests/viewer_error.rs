@@ -9,7 +9,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use lumiere::analysis::convergence::EstimatorKey;
 use lumiere::app::{LumiereApp, ViewOptions};
-use lumiere::render::settings::LightSampling;
+use lumiere::course::LightSampling;
 use lumiere::render::settings_override::SettingsOverride;
 use lumiere::{BrdfOverride, RenderSettings, Term};
 
@@ -288,7 +288,7 @@ fn compare_b_with_another_material_labels_each_half_with_its_own() {
             .flat_map(|y| (0..width as usize).map(move |x| y * width as usize + x))
             .map(|i| {
                 let p = snapshot.radiance[i];
-                lumiere::render::color::luminance(glam::Vec3::new(p[0], p[1], p[2]))
+                lumiere::course::color::luminance(glam::Vec3::new(p[0], p[1], p[2]))
             })
             .collect();
         pixels.iter().sum::<f32>() / pixels.len() as f32

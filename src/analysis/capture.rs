@@ -22,13 +22,13 @@ use std::sync::{Arc, Weak};
 
 use crate::analysis::convergence::EstimatorKey;
 use crate::analysis::metrics::ReferenceImage;
+use crate::course::RenderSettings;
 use crate::platform::threads::{self, Job};
-use crate::render::context::RenderContext;
 use crate::render::film::Film;
 use crate::render::progressive::ImageSource;
-use crate::render::settings::RenderSettings;
 use crate::render::{Budget, render_cancellable};
 use crate::scene::{Camera, Scene};
+use crate::transport::context::RenderContext;
 use crate::transport::splitting::choose_continuations;
 
 /// The seed a reference of an image of seed `seed` is rendered with.

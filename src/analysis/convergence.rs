@@ -19,8 +19,8 @@
 //! (1, 2, 4, …) plus the latest one, so a long run stays a few dozen points.
 
 use crate::analysis::metrics::ImageError;
-use crate::render::settings::Choice;
-use crate::render::settings::{
+use crate::course::Choice;
+use crate::course::{
     Adaptive, IndirectSampling, LightSampling, LightSelection, MisHeuristic, RenderSettings,
     Sampler,
 };

@@ -14,8 +14,7 @@
 
 use glam::Vec3;
 
-/// ε of relMSE: keeps black pixels from dividing by zero.
-pub const RELMSE_EPSILON: f64 = 1e-2;
+use crate::course::error::RELMSE_EPSILON;
 
 /// A converged image to measure error against (linear radiance, row-major from the top).
 #[derive(Clone, Debug, PartialEq)]

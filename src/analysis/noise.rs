@@ -26,9 +26,9 @@ use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
 use crate::analysis::metrics::ReferenceImage;
-use crate::render::color::{luminance, srgb_to_linear};
+use crate::course::color::{luminance, srgb_to_linear};
+use crate::course::{Term, TermSet};
 use crate::render::film::Film;
-use crate::render::settings::{Term, TermSet};
 
 /// What the viewer shows in place of the image.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -227,7 +227,7 @@ impl ColourMap {
             ColourMap::Sequential => viridis(t),
             ColourMap::Diverging => {
                 let linear = diverging_linear(t);
-                linear.map(crate::render::color::linear_to_srgb)
+                linear.map(crate::course::color::linear_to_srgb)
             }
         }
     }

@@ -26,9 +26,9 @@ use std::str::FromStr;
 
 use glam::Vec2;
 
+use crate::course::color::luminance;
+use crate::course::{Term, TermSet};
 use crate::geometry::camera::CameraRays;
-use crate::render::color::luminance;
-use crate::render::settings::{Term, TermSet};
 use crate::transport::path_log::{PathLog, PathSegment, SegmentKind};
 
 /// What a drawn ray did, which decides its style.

@@ -20,14 +20,15 @@ use std::collections::HashMap;
 
 use glam::{DVec3, Vec3};
 
-use crate::render::color::luminance;
-use crate::render::context::RenderContext;
+use crate::course::TermRadiance;
+use crate::course::color::luminance;
+use crate::course::{Term, TermSet};
 use crate::render::film::{Film, Welford};
 use crate::render::sample_stream;
-use crate::render::settings::{Term, TermSet};
-use crate::transport::TermRadiance;
+use crate::transport::context::RenderContext;
 use crate::transport::counts::RayCounts;
 use crate::transport::path_log::PathLog;
+use crate::transport::{sample_pixel, sample_pixel_logged};
 
 /// Most samples of one term a probe traces again (about 0.1 s for deep paths).
 pub const MAX_PROBE_SAMPLES: u32 = 16_384;
@@ -195,7 +196,14 @@ pub fn trace_pixel(context: &RenderContext, pixel: &FilmPixel) -> PixelProbe {
                 .map(|&pass| {
                     traced.entry(pass).or_insert_with(|| {
                         let stream = sample_stream(&context.settings, pixel.index as u64, pass);
-                        context.sample_pixel(pixel.x, pixel.y, &stream, &mut rays)
+                        sample_pixel(
+                            context,
+                            pixel.x,
+                            pixel.y,
+                            &stream,
+                            context.settings.terms,
+                            &mut rays,
+                        )
                     })[term.index()]
                 })
                 .collect();
@@ -247,7 +255,14 @@ impl PixelProbe {
     pub fn record_path(&self, context: &RenderContext, pass: u32) -> PathLog {
         let stream = sample_stream(&context.settings, self.index as u64, pass);
         let mut log = PathLog::default();
-        context.trace_recorded(self.x, self.y, &stream, &mut RayCounts::default(), &mut log);
+        sample_pixel_logged(
+            context,
+            self.x,
+            self.y,
+            &stream,
+            &mut RayCounts::default(),
+            &mut log,
+        );
         log
     }
 }

@@ -8,9 +8,9 @@
 
 use std::time::Duration;
 
+use crate::course::BrdfOverride;
 use crate::platform::time::Instant;
 use crate::render::progressive::Snapshot;
-use crate::render::settings::BrdfOverride;
 
 /// Toggles measured per run.
 const TOGGLES: usize = 12;

@@ -14,11 +14,12 @@ use eframe::egui;
 use glam::Vec3;
 
 use super::files::{Outbox, Saved};
+use crate::course::{Term, TermSet};
+use crate::render::display::DisplaySettings;
 use crate::render::export::{ImageFormat, encode_image, to_srgb8};
 use crate::render::film::Film;
 use crate::render::four_up::{TILES, Tile};
 use crate::render::progressive::Snapshot;
-use crate::render::settings::{DisplaySettings, Term, TermSet};
 use crate::render::sidecar::Sidecar;
 use crate::tools::strip::{BAND_COLOR, StripImage, StripLayout, label_fits};
 

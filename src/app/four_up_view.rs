@@ -9,9 +9,9 @@ use eframe::egui;
 
 use super::LumiereApp;
 use crate::analysis::noise::DisplayMode;
+use crate::render::display::Layout;
 use crate::render::four_up::{Arrangement, TILES, Tile, compose};
 use crate::render::progressive::Snapshot;
-use crate::render::settings::Layout;
 
 /// The colour around the image, and of an empty tile.
 pub const BACKGROUND: egui::Color32 = egui::Color32::from_gray(24);

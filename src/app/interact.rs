@@ -10,9 +10,9 @@ use glam::{Affine3A, Quat, Vec2, Vec3};
 
 use super::LumiereApp;
 use super::probe_view::ImageMapping;
+use crate::course::LightMode;
 use crate::geometry::accel::{Accel, Hit};
 use crate::geometry::camera::CameraRays;
-use crate::render::settings::LightMode;
 use crate::scene::{BrdfModel, Camera, Material, PunctualKind, Scene};
 
 /// Radians per point of mouse drag.
@@ -274,7 +274,7 @@ pub fn selection_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                         .changed();
                 let index = ui
                     .add(
-                        egui::Slider::new(&mut ior, 1.0..=crate::render::settings::MAX_IOR)
+                        egui::Slider::new(&mut ior, 1.0..=crate::course::MAX_IOR)
                             .text("η (index of refraction)"),
                     )
                     .on_hover_text("glass 1.5, water 1.33, diamond 2.42")

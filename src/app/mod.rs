@@ -36,8 +36,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::analysis::metrics::ReferenceImage;
 use crate::analysis::noise::{DisplayMode, NoiseView};
+use crate::course::{RenderSettings, TermSet};
+use crate::render::display::DisplaySettings;
 use crate::render::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
-use crate::render::settings::{DisplaySettings, RenderSettings, TermSet};
 use crate::scene::{Camera, Scene, builtin};
 
 /// How the viewer starts (from the command line).
@@ -217,7 +218,7 @@ pub struct LumiereApp {
 
 /// Forgets the qualities `settings` give sources `scene` does not have
 /// (those of a scene shown before).
-fn keep_sources_of(settings: &mut crate::render::settings::RenderSettings, scene: &Scene) {
+fn keep_sources_of(settings: &mut crate::course::RenderSettings, scene: &Scene) {
     let names: Vec<&str> = crate::transport::sources::sources(scene)
         .into_iter()
         .map(|key| key.name(scene))
@@ -727,7 +728,7 @@ fn auto_exposure(snapshot: &Snapshot) -> Option<f32> {
     let mean = snapshot
         .radiance
         .iter()
-        .map(|p| crate::render::color::luminance(glam::Vec3::new(p[0], p[1], p[2])) as f64)
+        .map(|p| crate::course::color::luminance(glam::Vec3::new(p[0], p[1], p[2])) as f64)
         .sum::<f64>()
         / snapshot.radiance.len() as f64;
     (mean > 0.0)

@@ -14,10 +14,10 @@ use crate::analysis::metrics::ReferenceImage;
 use crate::analysis::noise::{
     self, DisplayMode, FalseColour, NO_VALUE_SRGB, NoiseSource, NoiseView, Scale, format_tick,
 };
+use crate::course::TermSet;
 use crate::platform::threads::{self, Job};
 use crate::platform::time::Instant;
 use crate::render::film::Film;
-use crate::render::settings::TermSet;
 
 /// Height of the legend strip under the image, in points.
 pub const LEGEND_HEIGHT: f32 = 46.0;

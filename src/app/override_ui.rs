@@ -3,8 +3,8 @@
 
 use eframe::egui;
 
-use crate::render::settings::Choice;
-use crate::render::settings::{
+use crate::course::Choice;
+use crate::course::{
     BrdfOverride, Integrator, LightMode, MAX_SAMPLES_PER_VERTEX, RenderSettings, Term,
 };
 use crate::render::settings_override::{SettingsOverride, terms_phrase};

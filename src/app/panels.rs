@@ -8,12 +8,13 @@ use strum::IntoEnumIterator;
 use super::noise_view;
 use super::{LumiereApp, interact, reference, split};
 use crate::analysis::noise::{DisplayMode, NoiseSource, Scale};
-use crate::render::progressive::Snapshot;
-use crate::render::settings::Choice;
-use crate::render::settings::{
+use crate::course::Choice;
+use crate::course::{
     Adaptive, BrdfOverride, IndirectSampling, Integrator, LightMode, LightSampling, LightSelection,
-    MAX_IOR, MAX_SAMPLES_PER_VERTEX, MisHeuristic, RenderSettings, Sampler, Term, Tonemap,
+    MAX_IOR, MAX_SAMPLES_PER_VERTEX, MisHeuristic, RenderSettings, Sampler, Term,
 };
+use crate::render::display::Tonemap;
+use crate::render::progressive::Snapshot;
 
 /// French name and formula of each term, shown on hover (from the course).
 fn term_tooltip(term: Term) -> &'static str {

@@ -22,13 +22,13 @@ use crate::analysis::path_view::{
     self, PathLine, PathSample, RayRole, path_lines, segment_luminance,
 };
 use crate::analysis::probe::{FilmPixel, MAX_PROBE_SAMPLES, PixelProbe, TermProbe, trace_pixel};
+use crate::course::{LightMode, RenderSettings, Term, TermSet};
 use crate::platform::threads::{self, Job};
 use crate::platform::time::Instant;
-use crate::render::context::RenderContext;
 use crate::render::film::Film;
 use crate::render::progressive::ViewRequest;
-use crate::render::settings::{LightMode, RenderSettings, Term, TermSet};
 use crate::scene::Scene;
+use crate::transport::context::RenderContext;
 use crate::transport::continuations::Continuations;
 use crate::transport::path_log::PathLog;
 

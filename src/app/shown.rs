@@ -14,9 +14,9 @@ use super::{LumiereApp, four_up_view, split};
 use crate::analysis::noise::FalseColour;
 use crate::analysis::path_view::PathLine;
 use crate::platform::threads::{self, Job};
+use crate::render::display::DisplaySettings;
 use crate::render::four_up::TILES;
 use crate::render::progressive::Snapshot;
-use crate::render::settings::DisplaySettings;
 use crate::render::sidecar::Sidecar;
 use crate::tools::slides::SlideTexts;
 use crate::tools::slides::shown::{

@@ -5,7 +5,7 @@
 use eframe::egui;
 
 use super::LumiereApp;
-use crate::render::settings::{MAX_SAMPLES_PER_VERTEX, SourceQuality};
+use crate::course::{MAX_SAMPLES_PER_VERTEX, SourceQuality};
 use crate::transport::sources;
 
 pub fn source_quality_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {

@@ -16,8 +16,8 @@ use std::sync::Arc;
 use eframe::egui;
 
 use super::LumiereApp;
+use crate::course::{LightSampling, RenderSettings, TermSet};
 use crate::render::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
-use crate::render::settings::{LightSampling, RenderSettings, TermSet};
 use crate::render::settings_override::{SettingsOverride, side_labels};
 
 /// Composed images count their generations from here, away from the workers'.

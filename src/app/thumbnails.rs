@@ -7,13 +7,14 @@ use std::sync::mpsc::{Receiver, channel};
 
 use eframe::egui;
 
+use crate::course::{RenderSettings, Sampler};
 use crate::platform::threads;
-use crate::render::context::RenderContext;
+use crate::render::display::DisplaySettings;
 use crate::render::export::to_srgb8;
 use crate::render::film::Film;
-use crate::render::settings::{DisplaySettings, RenderSettings, Sampler};
 use crate::render::{Budget, render};
 use crate::scene::builtin::{self, SCENES};
+use crate::transport::context::RenderContext;
 
 /// A thumbnail's size in pixels (the scenes' cameras are 4:3).
 pub const SIZE: [usize; 2] = [96, 72];

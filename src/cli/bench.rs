@@ -8,8 +8,8 @@ use std::time::Duration;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use lumiere::render::settings::Choice;
-use lumiere::render::settings::{LightSampling, Sampler};
+use lumiere::course::Choice;
+use lumiere::course::{LightSampling, Sampler};
 use lumiere::tools::bench::error_curve::{ErrorBench, Estimator};
 use lumiere::tools::bench::peer::Peer;
 use lumiere::tools::bench::run::{BenchConfig, run as run_sections};

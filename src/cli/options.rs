@@ -2,10 +2,11 @@
 
 use clap::Args;
 
-use lumiere::render::settings::{
-    Adaptive, DisplaySettings, IndirectSampling, Integrator, LightSampling, LightSelection,
-    MAX_SAMPLES_PER_VERTEX, MisHeuristic, Sampler, SourceQuality, Tonemap,
+use lumiere::course::{
+    Adaptive, IndirectSampling, Integrator, LightSampling, LightSelection, MAX_SAMPLES_PER_VERTEX,
+    MisHeuristic, Sampler, SourceQuality,
 };
+use lumiere::render::display::{DisplaySettings, Tonemap};
 use lumiere::{BrdfOverride, LightMode, RenderSettings, TermSet};
 
 use super::parsers::{

@@ -4,7 +4,7 @@
 use std::ops::{Bound, RangeBounds};
 use std::str::FromStr;
 
-use lumiere::render::settings::{MAX_SAMPLES_PER_VERTEX, SourceQuality};
+use lumiere::course::{MAX_SAMPLES_PER_VERTEX, SourceQuality};
 
 /// Parses a finite number within `range`; `what` names the value (and its
 /// unit) in the messages, e.g. "exposure in stops must be within -64..=64, not 99".
@@ -80,7 +80,7 @@ pub fn parse_phong_exponent(s: &str) -> Result<f32, String> {
 pub fn parse_ior(s: &str) -> Result<f32, String> {
     parse_in_range(
         s,
-        1.0..=f64::from(lumiere::render::settings::MAX_IOR),
+        1.0..=f64::from(lumiere::course::MAX_IOR),
         "index of refraction",
     )
     .map_err(|e| format!("{e} (glass: 1.5, water: 1.33, diamond: 2.42)"))

@@ -5,8 +5,9 @@ use std::time::Duration;
 
 use clap::Args;
 
+use lumiere::course::Integrator;
+use lumiere::render::display::DisplaySettings;
 use lumiere::render::export::{ImageFormat, save_image};
-use lumiere::render::settings::{DisplaySettings, Integrator};
 use lumiere::render::sidecar::Sidecar;
 use lumiere::render::{Budget, render};
 use lumiere::scene::Camera;

@@ -3,7 +3,7 @@
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use lumiere::render::settings::Choice;
+use lumiere::course::Choice;
 use lumiere::tools::stress::{Case, Effort, table};
 
 use super::Failure;

@@ -6,10 +6,11 @@ use clap::Parser;
 
 use lumiere::analysis::noise::DisplayMode;
 use lumiere::analysis::path_view::PathSample;
-use lumiere::lesson::Lang;
-use lumiere::render::settings::{
-    BrdfOverride, IndirectSampling, Integrator, Layout, LightMode, LightSampling, Sampler, TermSet,
+use lumiere::course::{
+    BrdfOverride, IndirectSampling, Integrator, LightMode, LightSampling, Sampler, TermSet,
 };
+use lumiere::lesson::Lang;
+use lumiere::render::display::Layout;
 
 use super::Failure;
 use super::options::SceneOptions;
@@ -142,7 +143,7 @@ pub fn run(args: ViewArgs, restore: bool) -> Result<(), Failure> {
             "--layout four-up shows the terms of one render; it cannot be combined with --compare-…",
         ));
     }
-    let display = lumiere::render::settings::DisplaySettings {
+    let display = lumiere::render::display::DisplaySettings {
         layout: args.layout,
         ..args.options.display()
     };

@@ -14,7 +14,7 @@ use std::path::Path;
 use serde::Deserialize;
 use strum::{Display, EnumIter, EnumString, IntoStaticStr};
 
-use crate::render::settings::unknown_choice;
+use crate::course::unknown_choice;
 
 pub use step::{StepSettings, StepView};
 
@@ -158,7 +158,7 @@ impl Lesson {
         view.settings.validate()?;
         if let Some(b) = view.split_settings() {
             b.validate().map_err(|e| format!("split: {e}"))?;
-            if view.display.layout != crate::render::settings::Layout::Single {
+            if view.display.layout != crate::render::display::Layout::Single {
                 return Err("a step shows either a split or the four-up layout, not both".into());
             }
         }

@@ -4,10 +4,11 @@
 use serde::Deserialize;
 
 use crate::analysis::noise::DisplayMode;
-use crate::render::settings::{
-    BrdfOverride, DisplaySettings, IndirectSampling, Integrator, Layout, LightMode, LightSampling,
-    MisHeuristic, RenderSettings, Sampler, SourceQuality, TermSet, Tonemap,
+use crate::course::{
+    BrdfOverride, IndirectSampling, Integrator, LightMode, LightSampling, MisHeuristic,
+    RenderSettings, Sampler, SourceQuality, TermSet,
 };
+use crate::render::display::{DisplaySettings, Layout, Tonemap};
 use crate::render::settings_override::{SettingsOverride, named};
 
 /// Samples per pixel a step stops at, unless it says otherwise.

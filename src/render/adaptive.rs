@@ -30,9 +30,9 @@
 
 use rayon::prelude::*;
 
-use crate::analysis::metrics::RELMSE_EPSILON;
+use crate::course::error::RELMSE_EPSILON;
+use crate::course::{Adaptive, Term, TermSet};
 use crate::render::film::{Film, TermBuffer};
-use crate::render::settings::{Adaptive, Term, TermSet};
 
 /// The terms each pixel is to receive in the next pass, or `None` when every
 /// pixel receives all of `terms` (no pixel has stopped yet).

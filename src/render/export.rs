@@ -9,8 +9,8 @@ use std::path::Path;
 use glam::Vec3;
 use image::{ImageBuffer, Rgb};
 
-use crate::render::color::linear_to_srgb;
-use crate::render::settings::DisplaySettings;
+use crate::course::color::linear_to_srgb;
+use crate::render::display::DisplaySettings;
 
 /// Image file formats lumiere writes, chosen by extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -24,8 +24,9 @@ use std::ops::Range;
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
-use crate::render::color::luminance;
-use crate::render::settings::{Term, TermSet};
+use crate::course::color::luminance;
+use crate::course::{Term, TermSet};
+use crate::platform::memory::memory_ceiling;
 
 // ---------------------------------------------------------------------------
 // Memory
@@ -38,12 +39,6 @@ pub const TERM_BYTES_PER_PIXEL: u64 = 3 * 8 + 2 * 8 + 4;
 /// Bytes per pixel of one pass's samples on their way to the film: an RGB
 /// f32 triple for each of the four terms, whichever are kept.
 pub const PASS_BYTES_PER_PIXEL: u64 = Term::COUNT as u64 * 3 * 4;
-
-/// Largest film accepted on any machine, whatever its memory.
-pub const MAX_FILM_BYTES: u64 = 32 << 30;
-
-/// The ceiling when the machine's memory cannot be read.
-const FALLBACK_FILM_BYTES: u64 = 8 << 30;
 
 /// An image whose film would not fit the memory ceiling.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -76,27 +71,6 @@ fn gib(bytes: u64) -> f64 {
 /// Bytes per pixel of a film holding `terms`, with the pass buffer that fills it.
 pub fn bytes_per_pixel(terms: TermSet) -> u64 {
     terms.iter().count() as u64 * TERM_BYTES_PER_PIXEL + PASS_BYTES_PER_PIXEL
-}
-
-/// The largest film accepted here, and why: half the physical memory
-/// (`MemTotal` in /proc/meminfo) but at most [`MAX_FILM_BYTES`]; 8 GiB
-/// where the memory cannot be read.
-pub fn memory_ceiling() -> (u64, &'static str) {
-    let total = std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|info| mem_total_bytes(&info));
-    match total {
-        Some(total) if total / 2 < MAX_FILM_BYTES => (total / 2, "half of this machine's memory"),
-        Some(_) => (MAX_FILM_BYTES, "the largest film accepted on any machine"),
-        None => (FALLBACK_FILM_BYTES, "the machine's memory is unknown"),
-    }
-}
-
-/// `MemTotal` of /proc/meminfo's text, in bytes.
-fn mem_total_bytes(meminfo: &str) -> Option<u64> {
-    let line = meminfo.lines().find(|l| l.starts_with("MemTotal:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    kib.checked_mul(1024)
 }
 
 /// Welford's running statistics of one pixel's sample luminance.
@@ -356,8 +330,6 @@ mod tests {
     fn film_memory_is_estimated_per_term_and_capped() {
         assert_eq!(bytes_per_pixel(TermSet::ALL), 4 * 44 + 48);
         assert_eq!(bytes_per_pixel(TermSet::only(Term::L1)), 44 + 48);
-        assert_eq!(mem_total_bytes("MemTotal:       1024 kB\n"), Some(1 << 20));
-        assert_eq!(mem_total_bytes("nothing"), None);
         let error = Film::try_new(16384, 16384, TermSet::ALL).unwrap_err();
         assert_eq!(error.bytes, 16384 * 16384 * 224);
         assert!(

@@ -16,8 +16,8 @@
 //! L2 | sum
 //! ```
 
+use crate::course::{Term, TermSet};
 use crate::render::progressive::Snapshot;
-use crate::render::settings::{Term, TermSet};
 use crate::render::settings_override::terms_phrase;
 
 /// One tile of the four-up.

@@ -9,13 +9,11 @@
 //! pixel still needs (`adaptive`); that too depends on the film alone.
 
 pub mod adaptive;
-pub mod color;
-pub mod context;
+pub mod display;
 pub mod export;
 pub mod film;
 pub mod four_up;
 pub mod progressive;
-pub mod settings;
 pub mod settings_override;
 pub mod sidecar;
 
@@ -25,13 +23,14 @@ use std::time::Duration;
 use glam::Vec3;
 use rayon::prelude::*;
 
+use crate::course::TermRadiance;
+use crate::course::{RenderSettings, Term, TermSet};
 use crate::platform::time::Instant;
 use crate::render::adaptive::terms_to_sample;
-use crate::render::context::RenderContext;
 use crate::render::film::Film;
-use crate::render::settings::{RenderSettings, Term, TermSet};
-use crate::transport::TermRadiance;
+use crate::transport::context::RenderContext;
 use crate::transport::counts::RayCounts;
+use crate::transport::sample_pixel;
 use crate::transport::sampler::SampleStream;
 
 /// Rows per tile: small enough to balance two to many cores, large enough
@@ -170,7 +169,7 @@ impl PartialPass {
                 continue;
             }
             let stream = sample_stream(&context.settings, index as u64, self.pass);
-            *sample = context.sample_pixel_terms(x, y, &stream, &mut counts, pixel_terms);
+            *sample = sample_pixel(context, x, y, &stream, pixel_terms, &mut counts);
         }
         counts
     }

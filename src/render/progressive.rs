@@ -33,14 +33,14 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard, Weak};
 use std::time::Duration;
 
+use crate::course::{RenderSettings, Term, TermSet};
 use crate::geometry::camera::CameraRays;
 use crate::platform::threads::{self, Job};
 use crate::platform::time::Instant;
-use crate::render::context::RenderContext;
 use crate::render::film::Film;
-use crate::render::settings::{RenderSettings, Term, TermSet};
 use crate::render::{PartialPass, PassBuffer, render_pass_cancellable, render_pass_until};
 use crate::scene::{Camera, Scene};
+use crate::transport::context::RenderContext;
 use crate::transport::continuations::Continuations;
 use crate::transport::counts::RayCounts;
 use crate::transport::lights::LightTable;

@@ -17,12 +17,12 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::render::settings::Choice;
-use crate::render::settings::{
+use crate::course::Choice;
+use crate::course::{
     BrdfOverride, Integrator, LightMode, LightSampling, LightSelection, MisHeuristic,
     RenderSettings, Sampler, TermSet,
 };
-use crate::render::settings::{IndirectSampling, Term};
+use crate::course::{IndirectSampling, Term};
 
 /// What B changes from A; every value left out is A's.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]

@@ -5,7 +5,8 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::render::settings::{DisplaySettings, RenderSettings};
+use crate::course::RenderSettings;
+use crate::render::display::DisplaySettings;
 use crate::render::settings_override::SettingsOverride;
 use crate::scene::Camera;
 use crate::scene::edits::SceneEdits;

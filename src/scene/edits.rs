@@ -36,7 +36,7 @@ pub struct ObjectEdit {
 }
 
 fn default_ior() -> f32 {
-    super::DEFAULT_IOR
+    crate::course::DEFAULT_IOR
 }
 
 /// A punctual light's colour × intensity as edited.

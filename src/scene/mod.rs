@@ -4,7 +4,7 @@
 //! optional shading normals, two UV sets), triangles that index it, materials
 //! in the glTF metallic-roughness form, textures decoded to linear RGB,
 //! punctual lights and cameras. Policy (which terms, which light mode, BRDF
-//! override) lives in [`crate::render::settings::RenderSettings`]; derived structures
+//! override) lives in [`crate::course::RenderSettings`]; derived structures
 //! (BVH, light table) are built from the scene, never cached inside it.
 //!
 //! Units follow the course (`docs/conventions.md`): metres, emitted radiance
@@ -95,9 +95,6 @@ pub struct Material {
     pub ior: f32,
 }
 
-/// The index of refraction of glass when a file gives none (glTF's default).
-pub const DEFAULT_IOR: f32 = 1.5;
-
 impl Default for Material {
     fn default() -> Self {
         // the glTF default material: white, metallic 1, roughness 1
@@ -111,7 +108,7 @@ impl Default for Material {
             emission_texture: None,
             double_sided: false,
             transmission: 0.0,
-            ior: DEFAULT_IOR,
+            ior: crate::course::DEFAULT_IOR,
         }
     }
 }

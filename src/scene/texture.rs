@@ -7,7 +7,7 @@
 
 use glam::{Vec2, Vec3};
 
-pub use crate::render::color::{linear_to_srgb, srgb_to_linear};
+pub use crate::course::color::{linear_to_srgb, srgb_to_linear};
 
 /// How coordinates outside [0, 1] fold back in (glTF sampler wrap modes).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]

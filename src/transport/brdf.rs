@@ -30,8 +30,8 @@
 use glam::{Vec2, Vec3};
 use std::f32::consts::{FRAC_1_PI, PI};
 
+use crate::course::color::luminance;
 use crate::geometry::Frame;
-use crate::render::color::luminance;
 use crate::transport::fresnel::fresnel_dielectric;
 use crate::transport::warps::{cosine_hemisphere, cosine_hemisphere_pdf, phong_lobe};
 

@@ -1,7 +1,7 @@
 //! What a render counts: the rays it traced, by kind and by term, the work
 //! it skipped, and the samples the film's guard dropped.
 
-use crate::render::settings::Term;
+use crate::course::Term;
 
 /// Rays traced, by kind and by the lowest selected term each serves: the
 /// shadow ray or gathered direction at the k-th reflection serves L_k; a ray

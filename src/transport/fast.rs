@@ -36,12 +36,13 @@
 
 use glam::Vec3;
 
+use crate::course::TermRadiance;
+use crate::course::{IndirectSampling, LightSampling, MisHeuristic, Term, TermSet};
 use crate::geometry::Frame;
 use crate::geometry::Ray;
 use crate::geometry::accel::{Accel, Hit, Query};
-use crate::render::context::RenderContext;
-use crate::render::settings::{IndirectSampling, LightSampling, MisHeuristic, Term, TermSet};
 use crate::transport::brdf::{Brdf, BrdfSample};
+use crate::transport::context::RenderContext;
 use crate::transport::counts::RayCounts;
 use crate::transport::path_log::{PathLog, SegmentKind};
 use crate::transport::sampler::{SampleStream, dim};
@@ -51,7 +52,6 @@ use crate::transport::warps::{
     UNIFORM_HEMISPHERE_PDF, balance_heuristic, cosine_hemisphere, cosine_hemisphere_pdf,
     power_heuristic, uniform_hemisphere,
 };
-use crate::transport::{TermRadiance, guard_sample};
 
 /// The reflections after which Russian roulette may end a path: from the
 /// fourth on, so that it only touches L3+ and never its largest part, the
@@ -59,7 +59,7 @@ use crate::transport::{TermRadiance, guard_sample};
 /// it hits), where the roulette's weights 1/q would add the most noise.
 pub const ROULETTE_FROM_REFLECTION: u32 = 4;
 
-/// What the continuations of one pilot sample brought (`RenderContext::pilot_sample`).
+/// What the continuations of one pilot sample brought (`transport::pilot_sample`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ContinuationSplit {
     /// The radiance of each of the two continuations, summed over the
@@ -72,37 +72,29 @@ pub struct ContinuationSplit {
     pub continuation_rays: u64,
 }
 
-impl RenderContext {
-    /// One sample of pixel (`x`, `y`) with two continuations at the first
-    /// hit, whatever the settings say, and what each continuation brought:
-    /// the splitting pilot's measurement.
-    pub fn pilot_sample(
-        &self,
-        x: u32,
-        y: u32,
-        stream: &SampleStream,
-        counts: &mut RayCounts,
-    ) -> (TermRadiance, ContinuationSplit) {
-        let ray = self.camera.generate(x, y, stream.uniform2(dim::PIXEL));
-        let mut split = ContinuationSplit::default();
-        let radiance = Walk::new(self, counts, None).split_path(ray, stream, 2, Some(&mut split));
-        (guard_sample(radiance, counts), split)
-    }
+/// The splitting pilot's sample along camera ray `ray`: two continuations
+/// at the first hit, whatever the settings say, and what each brought; unguarded.
+pub(crate) fn pilot_radiance(
+    context: &RenderContext,
+    ray: Ray,
+    stream: &SampleStream,
+    counts: &mut RayCounts,
+) -> (TermRadiance, ContinuationSplit) {
+    let mut split = ContinuationSplit::default();
+    let radiance = Walk::new(context, counts, None).split_path(ray, stream, 2, Some(&mut split));
+    (radiance, split)
+}
 
-    /// [`RenderContext::sample_pixel`] that also appends every ray it traces to `log`.
-    pub fn trace_recorded(
-        &self,
-        x: u32,
-        y: u32,
-        stream: &SampleStream,
-        counts: &mut RayCounts,
-        log: &mut PathLog,
-    ) -> TermRadiance {
-        let ray = self.camera.generate(x, y, stream.uniform2(dim::PIXEL));
-        let splits = self.continuations.at(x, y);
-        let radiance = Walk::new(self, counts, Some(log)).camera_path(ray, stream, splits);
-        guard_sample(radiance, counts)
-    }
+/// [`radiance`] for the settings' terms, appending every ray to `log`.
+pub(crate) fn logged_radiance(
+    context: &RenderContext,
+    ray: Ray,
+    stream: &SampleStream,
+    splits: u32,
+    counts: &mut RayCounts,
+    log: &mut PathLog,
+) -> TermRadiance {
+    Walk::new(context, counts, Some(log)).camera_path(ray, stream, splits)
 }
 
 /// The fast integrator's radiance along camera ray `ray` (unit direction),
@@ -779,26 +771,4 @@ fn draw_direction(
 fn lowest_selected(terms: TermSet, reflections: u32) -> usize {
     let from = Term::of_reflections(reflections);
     terms.iter().find(|&t| t >= from).unwrap_or(from).index()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_guard_zeroes_invalid_terms_and_counts_the_sample_once() {
-        let mut counts = RayCounts::default();
-        let valid = [Vec3::ZERO, Vec3::new(0.5, 1.0, 2.0), Vec3::ONE, Vec3::ZERO];
-        assert_eq!(guard_sample(valid, &mut counts), valid);
-        assert_eq!(counts.invalid_samples, 0);
-        let invalid = [
-            Vec3::new(f32::INFINITY, 0.0, 0.0),
-            Vec3::new(0.5, f32::NAN, 2.0),
-            Vec3::ONE,
-            Vec3::new(0.0, -1e-9, 0.0),
-        ];
-        let guarded = guard_sample(invalid, &mut counts);
-        assert_eq!(guarded, [Vec3::ZERO, Vec3::ZERO, Vec3::ONE, Vec3::ZERO]);
-        assert_eq!(counts.invalid_samples, 1);
-    }
 }

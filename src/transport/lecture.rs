@@ -22,12 +22,12 @@
 
 use glam::{Vec2, Vec3};
 
+use crate::course::TermRadiance;
+use crate::course::{Term, TermSet};
 use crate::geometry::accel::Hit;
 use crate::geometry::{Frame, Ray};
-use crate::render::context::RenderContext;
-use crate::render::settings::{Term, TermSet};
-use crate::transport::TermRadiance;
 use crate::transport::brdf::Brdf;
+use crate::transport::context::RenderContext;
 use crate::transport::sampler::{SampleStream, dim};
 use crate::transport::sources::SourceBudget;
 use crate::transport::surface::{SurfacePoint, leaves_on_its_side};

@@ -3,10 +3,10 @@
 
 use glam::Vec3;
 
+use crate::course::Term;
+use crate::course::TermRadiance;
 use crate::geometry::Ray;
 use crate::geometry::accel::Query;
-use crate::render::settings::Term;
-use crate::transport::TermRadiance;
 
 /// The segments of one traced sample, for drawing its path.
 #[derive(Clone, Debug, Default, PartialEq)]

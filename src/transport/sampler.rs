@@ -46,7 +46,7 @@
 
 use glam::Vec2;
 
-use crate::render::settings::Sampler;
+use crate::course::Sampler;
 
 /// Fixed dimensions of a sample: each use of a random number has its own.
 ///

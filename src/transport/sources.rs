@@ -26,9 +26,7 @@
 
 use std::sync::Arc;
 
-use crate::render::settings::{
-    LightSelection, MAX_SOURCE_SAMPLES_PER_VERTEX, RenderSettings, SourceQuality,
-};
+use crate::course::{LightSelection, MAX_SOURCE_SAMPLES_PER_VERTEX, RenderSettings, SourceQuality};
 use crate::scene::Scene;
 use crate::transport::warps::AliasTable;
 

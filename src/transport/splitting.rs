@@ -55,12 +55,13 @@ use std::sync::Arc;
 use glam::Vec3;
 use rayon::prelude::*;
 
-use crate::analysis::metrics::RELMSE_EPSILON;
-use crate::render::context::RenderContext;
-use crate::render::settings::Sampler;
+use crate::course::Sampler;
+use crate::course::error::RELMSE_EPSILON;
+use crate::transport::context::RenderContext;
 use crate::transport::continuations::{Continuations, SplitMap};
 use crate::transport::counts::RayCounts;
 use crate::transport::fast::ContinuationSplit;
+use crate::transport::pilot_sample;
 use crate::transport::sampler::SampleStream;
 
 /// Pilot samples per grid pixel.
@@ -259,7 +260,7 @@ fn pilot_row(context: &RenderContext, grid: &PilotGrid, row: u32) -> Vec<PilotSu
         for (sample, value) in values.iter_mut().enumerate() {
             let stream = SampleStream::new(settings.seed ^ PILOT_SEED, pixel, sample as u64);
             let before = counts.total();
-            let (radiance, split) = context.pilot_sample(x, y, &stream, &mut counts);
+            let (radiance, split) = pilot_sample(context, x, y, &stream, &mut counts);
             *value = channel_mean(radiance.iter().sum());
             within += continuation_noise(&split);
             sums.first_rays += split.first_rays - before;

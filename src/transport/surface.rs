@@ -8,8 +8,8 @@
 
 use glam::{Vec2, Vec3};
 
+use crate::course::{BrdfOverride, RenderSettings};
 use crate::geometry::{Frame, Ray, interpolate_point, offset_ray_origin};
-use crate::render::settings::{BrdfOverride, RenderSettings};
 use crate::scene::{BrdfModel, Material, Scene, TextureRef};
 use crate::transport::brdf::Brdf;
 use crate::transport::sampler::mix64;

@@ -5,9 +5,9 @@
 
 use glam::Vec3;
 
+use crate::course::Term;
 use crate::geometry::Ray;
 use crate::geometry::accel::{Accel, Query};
-use crate::render::settings::Term;
 use crate::transport::counts::RayCounts;
 use crate::transport::path_log::{PathLog, PathSegment, SegmentKind};
 

@@ -89,7 +89,7 @@ pub fn mean_and_error(film: &Film, term: Term) -> (f64, f64) {
     let buffer = film.term(term).expect("term rendered");
     let n = film.pixel_count() as f64;
     let mean = (0..film.pixel_count())
-        .map(|i| lumiere::render::color::luminance(buffer.mean(i).as_vec3()) as f64)
+        .map(|i| lumiere::course::color::luminance(buffer.mean(i).as_vec3()) as f64)
         .sum::<f64>()
         / n;
     let variance: f64 = (0..film.pixel_count())
@@ -211,7 +211,7 @@ pub fn estimate(context: &RenderContext, ray: Ray, term: Term, n: u64, seed: u64
     for i in 0..n {
         let stream = SampleStream::new(seed, 0, i);
         // `trace` is unguarded: a NaN or a negative value reaches the test
-        let radiance = context.trace(ray, &stream, &mut counts);
+        let radiance = lumiere::transport::trace(context, ray, &stream, &mut counts);
         assert!(
             radiance
                 .iter()

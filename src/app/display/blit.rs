@@ -7,7 +7,7 @@ use eframe::egui;
 use eframe::egui_wgpu::{self, CallbackResources, CallbackTrait, ScreenDescriptor, wgpu};
 
 use super::ImageSource;
-use crate::render::settings::{DisplaySettings, Tonemap};
+use crate::render::display::{DisplaySettings, Tonemap};
 
 /// Creates the blit's pipeline for the renderer and registers it.
 pub fn install(render_state: &egui_wgpu::RenderState) {

@@ -9,8 +9,8 @@ use eframe::egui_wgpu;
 use glam::Vec3;
 
 use super::ImageSource;
+use crate::render::display::{DisplaySettings, Tonemap};
 use crate::render::export::to_srgb8;
-use crate::render::settings::{DisplaySettings, Tonemap};
 
 /// Nothing to set up: egui owns the texture.
 pub fn install(_render_state: &egui_wgpu::RenderState) {}

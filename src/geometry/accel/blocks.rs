@@ -313,13 +313,18 @@ fn block_candidates<const N: usize>(block: &Block<N>, ray: &RayLanes) -> [u32; N
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::transport::sampler::mix64;
 
     /// A test ray: origin, direction, t_max.
     type TestRay = (Vec3A, Vec3A, f32);
 
-    /// Fixed-seed numbers in [−1, 1).
+    /// Fixed-seed numbers in [−1, 1): SplitMix64.
     struct Numbers(u64);
+
+    fn mix64(mut z: u64) -> u64 {
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
 
     impl Numbers {
         fn next(&mut self) -> f32 {

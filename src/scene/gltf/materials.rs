@@ -6,7 +6,8 @@ use glam::Vec3;
 
 use super::build::SceneBuilder;
 use super::{Loaded, label};
-use crate::scene::{DEFAULT_IOR, Material, TextureRef};
+use crate::course::DEFAULT_IOR;
+use crate::scene::{Material, TextureRef};
 
 /// `emissiveFactor × KHR_materials_emissive_strength`, a radiance.
 fn emission_radiance(material: &gltf::Material) -> Loaded<Vec3> {

@@ -14,7 +14,7 @@ use super::accessors::{is_vec3_of_float, layout_name, read_accessor};
 use super::build::SceneBuilder;
 use super::nodes::scene_roots;
 use super::{Loaded, label};
-use crate::render::film::memory_ceiling;
+use crate::platform::memory::memory_ceiling;
 use crate::scene::{Object, Triangle, append_vertex_attribute};
 
 /// Largest number of triangles, and of vertices, in a loaded scene (instancing

@@ -32,10 +32,11 @@ use std::sync::Arc;
 
 use crate::analysis::capture::{radiance_settings, reference_seed};
 use crate::analysis::metrics::{ReferenceImage, image_error};
+use crate::course::Choice;
+use crate::course::{Adaptive, LightSampling, RenderSettings, Sampler};
 use crate::platform::time::Instant;
+use crate::render::display::DisplaySettings;
 use crate::render::export::{load_exr, save_image};
-use crate::render::settings::Choice;
-use crate::render::settings::{Adaptive, DisplaySettings, LightSampling, RenderSettings, Sampler};
 use crate::render::{Budget, render};
 use crate::scene::{Scene, builtin};
 use crate::transport::continuations::Continuations;

@@ -29,7 +29,7 @@ pub mod throughput;
 
 use strum::{Display, EnumIter, EnumString, IntoStaticStr};
 
-use crate::render::settings::unknown_choice;
+use crate::course::unknown_choice;
 use std::fmt;
 use std::path::PathBuf;
 

@@ -14,12 +14,12 @@
 
 use strum::{Display, EnumIter, EnumString, IntoStaticStr};
 
-use crate::render::settings::unknown_choice;
+use crate::course::unknown_choice;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use crate::render::settings::Choice;
-use crate::render::settings::{BrdfOverride, LightMode, RenderSettings, Term};
+use crate::course::Choice;
+use crate::course::{BrdfOverride, LightMode, RenderSettings, Term};
 use crate::scene::{Projection, Scene, builtin};
 use crate::transport::lights::sphere_light_radius;
 

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use crate::RenderContext;
-use crate::render::settings::RenderSettings;
+use crate::course::RenderSettings;
 use crate::scene::builtin;
 use crate::transport::splitting::choose_continuations;
 

@@ -21,8 +21,8 @@ use glam::Vec3;
 use serde::Serialize;
 use serde_json::json;
 
+use crate::course::RenderSettings;
 use crate::platform::time::Instant;
-use crate::render::settings::RenderSettings;
 use crate::render::{Budget, render};
 use crate::scene::{Material, Scene, builtin, gltf};
 use crate::transport::splitting::choose_continuations;

@@ -4,7 +4,7 @@
 //! continuation, gathered) over the wall time of full passes: sampling,
 //! shading, BRDFs, film accumulation and traversal. To see how much of that
 //! is traversal, the same passes are rendered once more with the path log on
-//! ([`RenderContext::trace_recorded`]), which keeps every ray as traced
+//! ([`crate::transport::sample_pixel_logged`]), which keeps every ray as traced
 //! (origin, direction, t_max, the sphere a shadow ray aims at), and those
 //! exact rays are traced again through the same [`Accel`], with the query
 //! the renderer used ([`Query`]): closest hit for camera rays and
@@ -32,6 +32,7 @@ use crate::platform::time::Instant;
 use crate::render::{Budget, render, sample_stream};
 use crate::transport::counts::RayCounts;
 use crate::transport::path_log::{PathLog, PathSegment, SegmentKind};
+use crate::transport::sample_pixel_logged;
 use crate::{Film, RenderContext};
 
 use super::csv::{Decimals, csv_text};
@@ -121,7 +122,14 @@ pub fn record_segments(context: &RenderContext, passes: u32) -> Vec<PathSegment>
                     );
                     let stream = sample_stream(&context.settings, index as u64, pass);
                     let mut log = PathLog::default();
-                    context.trace_recorded(x, y, &stream, &mut RayCounts::default(), &mut log);
+                    sample_pixel_logged(
+                        context,
+                        x,
+                        y,
+                        &stream,
+                        &mut RayCounts::default(),
+                        &mut log,
+                    );
                     log
                 })
                 .collect();

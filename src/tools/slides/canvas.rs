@@ -13,7 +13,7 @@ use ab_glyph::{Font, GlyphId, PxScale, ScaleFont, point};
 use glam::Vec2;
 use image::RgbImage;
 
-use crate::render::color::{linear_to_srgb, srgb_to_linear};
+use crate::course::color::{linear_to_srgb, srgb_to_linear};
 use crate::tools::font::{self, dejavu_sans};
 
 /// An 8-bit sRGB colour.

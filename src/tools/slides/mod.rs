@@ -55,6 +55,7 @@
 //! looping.
 
 mod canvas;
+mod overlays;
 mod render;
 pub mod shown;
 #[cfg(test)]
@@ -63,7 +64,8 @@ mod shown_tests;
 mod tests;
 
 pub use canvas::{Canvas, Rect, Rgb8};
-pub use render::{GifWriter, SlideRender, false_colour_srgb8, frame_counts, render_slide};
+pub use overlays::false_colour_srgb8;
+pub use render::{GifWriter, SlideRender, frame_counts, render_slide};
 
 use crate::lesson::{Lang, Lesson, PROBE_FRAME, StepView};
 

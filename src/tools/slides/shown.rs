@@ -40,13 +40,13 @@
 use std::sync::Arc;
 
 use super::canvas::{self, Canvas, Rect, Rgb8};
-use super::render::{colour_bar_room, draw_colour_bar, draw_paths, false_colour_srgb8};
+use super::overlays::{colour_bar_room, draw_colour_bar, draw_paths, false_colour_srgb8};
 use super::{BACKGROUND, MAX_SLIDE_SIDE, Slide, SlideLayout, SlideTexts, TEXT_COLOR};
 use crate::analysis::noise::FalseColour;
 use crate::analysis::path_view::PathLine;
+use crate::render::display::DisplaySettings;
 use crate::render::export::to_srgb8;
 use crate::render::four_up::Arrangement;
-use crate::render::settings::DisplaySettings;
 
 /// The smallest side of a picture, in pixels.
 pub const MIN_SIDE: u32 = 16;

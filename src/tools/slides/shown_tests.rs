@@ -10,8 +10,8 @@ use super::shown::*;
 use super::{BACKGROUND, Slide, SlideLayout, SlideTexts};
 use crate::analysis::noise::{DisplayMode, NoiseView, colour_values};
 use crate::analysis::path_view::{PathLine, RayRole};
-use crate::render::color::linear_to_srgb;
-use crate::render::settings::Term;
+use crate::course::Term;
+use crate::course::color::linear_to_srgb;
 
 /// A `width`×`height` image whose pixel (x, y) is (x, y, 7) (`width`, `height` ≤ 256).
 fn ramp(width: u32, height: u32) -> SrgbImage {

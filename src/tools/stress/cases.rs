@@ -11,12 +11,12 @@ use super::scenes::{
     light_on_surface_scene, point_in_sphere_scene,
 };
 use super::{Case, CaseReport, Effort, term_mean};
-use crate::render::context::RenderContext;
+use crate::course::Choice;
+use crate::course::{BrdfOverride, LightMode, RenderSettings, Term, TermSet};
 use crate::render::film::Film;
-use crate::render::settings::Choice;
-use crate::render::settings::{BrdfOverride, LightMode, RenderSettings, Term, TermSet};
 use crate::render::{PassBuffer, render_pass};
 use crate::scene::{Material, Scene};
+use crate::transport::context::RenderContext;
 use crate::transport::counts::RayCounts;
 
 /// Film size and passes for a render case.

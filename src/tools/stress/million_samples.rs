@@ -7,11 +7,12 @@ use glam::Vec3;
 use super::cases::furnace_terms;
 use super::scenes::{furnace_scene, glowing_wall};
 use super::{Case, CaseReport, Effort, term_mean};
-use crate::render::color::luminance;
-use crate::render::context::RenderContext;
+use crate::course::color::luminance;
+use crate::course::{RenderSettings, Term, TermSet};
 use crate::render::film::Film;
-use crate::render::settings::{RenderSettings, Term, TermSet};
+use crate::transport::context::RenderContext;
 use crate::transport::counts::RayCounts;
+use crate::transport::sample_pixel;
 
 /// One pixel of the furnace (ρ = 0.5, E = 1) for 10⁶ passes: L0 is exactly
 /// 1 in every sample, so its mean must be exactly 1 (a drifting sum would
@@ -37,7 +38,7 @@ pub(super) fn run(effort: Effort) -> CaseReport {
     for pass in 0..passes {
         // one pixel: no thread pool, one sample at a time
         let stream = crate::render::sample_stream(stream_settings, 0, pass);
-        radiance[0] = context.sample_pixel(0, 0, &stream, &mut counts);
+        radiance[0] = sample_pixel(&context, 0, 0, &stream, context.settings.terms, &mut counts);
         film.add_pass(stream_settings.terms, pass, &radiance);
     }
     report.samples = passes as u64;

@@ -37,8 +37,8 @@ mod sphere_leaks;
 
 use strum::{Display, EnumIter, EnumString, IntoStaticStr};
 
+use crate::course::unknown_choice;
 use crate::platform::time::Instant;
-use crate::render::settings::unknown_choice;
 
 pub use cases::case_scene;
 pub use report::{CaseReport, Mean, NOISELESS_TOLERANCE, Z_LIMIT, table, term_mean};

@@ -7,9 +7,9 @@
 use std::time::Duration;
 
 use super::Case;
+use crate::course::Choice;
+use crate::course::Term;
 use crate::render::film::Film;
-use crate::render::settings::Choice;
-use crate::render::settings::Term;
 use crate::transport::counts::RayCounts;
 
 /// Largest |z| of a noisy term's mean against its exact value.

@@ -36,18 +36,19 @@ use std::sync::Arc;
 
 use ab_glyph::{Font, GlyphId, PxScale, ScaleFont, point};
 
-use crate::platform::time::Instant;
-use crate::render::context::RenderContext;
-use crate::render::export::{ExportError, to_srgb8};
-use crate::render::film::Film;
-use crate::render::settings::Choice;
-use crate::render::settings::{
-    BrdfOverride, DisplaySettings, IndirectSampling, LightMode, LightSampling, LightSelection,
+use crate::course::Choice;
+use crate::course::{
+    BrdfOverride, IndirectSampling, LightMode, LightSampling, LightSelection,
     MAX_SAMPLES_PER_VERTEX, MisHeuristic, RenderSettings, Sampler, TermSet,
 };
+use crate::platform::time::Instant;
+use crate::render::display::DisplaySettings;
+use crate::render::export::{ExportError, to_srgb8};
+use crate::render::film::Film;
 use crate::render::{PassBuffer, RenderStats, render_pass};
 use crate::scene::Scene;
 use crate::tools::font::{self, hack_regular};
+use crate::transport::context::RenderContext;
 use crate::transport::splitting::choose_continuations;
 
 /// Largest strip side in pixels: a PNG a slide can hold, a buffer memory can.

@@ -1,8 +1,9 @@
-//! Drawing a point, or a direction, on an extended light: a triangle by
-//! area (uniform point, pdf d² / (A cos θ′)) or by solid angle (Arvo's
-//! spherical triangle, pdf 1/Ω), a sphere by the cone of directions it
-//! subtends (pdf 1 / (2π (1 − cos θ_max))). `transport::lights` picks the
-//! light and calls these.
+//! One light source: what it is ([`Light`], a spot's [`Cone`]), what a
+//! sample of it gives ([`LightSample`]), and how a point or a direction is
+//! drawn on an extended light: a triangle by area (uniform point, pdf
+//! d² / (A cos θ′)) or by solid angle (Arvo's spherical triangle, pdf 1/Ω),
+//! a sphere by the cone of directions it subtends (pdf 1 / (2π (1 − cos
+//! θ_max))). `transport::lights` picks the light and calls these.
 
 use glam::{DVec3, Vec2, Vec3};
 use std::f32::consts::PI;
@@ -10,11 +11,131 @@ use std::f32::consts::PI;
 use crate::geometry::accel::{Sphere, intersect_sphere};
 use crate::geometry::{Frame, Ray, interpolate_point, offset_ray_origin};
 use crate::scene::Scene;
-use crate::transport::lights::{Cone, Light, LightSample, SHADOW_EPSILON, SOLID_ANGLE_RANGE};
 use crate::transport::surface::SurfacePoint;
 use crate::transport::warps::{
     spherical_triangle, spherical_triangle_area, uniform_cone, uniform_cone_pdf, uniform_triangle,
 };
+
+/// Shadow rays stop this fraction short of the light point (pbrt's ShadowEpsilon):
+/// both ends are already offset off their surfaces, this only absorbs the
+/// rounding of `origin + t·direction` near t = 1.
+pub(crate) const SHADOW_EPSILON: f32 = 1e-4;
+
+/// The angular profile of a spot light (glTF KHR_lights_punctual falloff).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cone {
+    /// Unit direction the light points to.
+    pub axis: Vec3,
+    pub cos_inner: f32,
+    pub cos_outer: f32,
+}
+
+impl Cone {
+    /// Fraction of the peak intensity emitted along unit `direction`:
+    /// squared linear ramp in cos θ between the outer and inner cones.
+    pub fn falloff(&self, direction: Vec3) -> f32 {
+        let scale = 1.0 / (self.cos_inner - self.cos_outer).max(1e-3);
+        let t = ((self.axis.dot(direction) - self.cos_outer) * scale).clamp(0.0, 1.0);
+        t * t
+    }
+
+    /// Solid angle ∫ falloff dω (approximate: the mean of the two cones').
+    pub(crate) fn solid_angle(&self) -> f32 {
+        2.0 * PI * (1.0 - 0.5 * (self.cos_inner + self.cos_outer))
+    }
+}
+
+/// One light source of a render.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Light {
+    /// An emissive scene triangle, with what a light sample on it reads
+    /// copied from the scene: a sample then costs no triangle, vertex or
+    /// material lookups and no normal.
+    Triangle {
+        triangle: u32,
+        area: f32,
+        /// Its corners, as the scene stores them.
+        corners: [Vec3; 3],
+        /// Unit geometric normal of its front face.
+        normal: Vec3,
+        /// Emitted radiance, when it is the same all over the triangle (no
+        /// emission texture); else it is looked up per point.
+        uniform_radiance: Option<Vec3>,
+        double_sided: bool,
+    },
+    /// A point light of intensity I (W/sr), optionally restricted to a cone.
+    Point {
+        position: Vec3,
+        intensity: Vec3,
+        cone: Option<Cone>,
+    },
+    /// An area light collapsed to a point: I(ω) = radiance_area · max(0, n·ω).
+    CosinePoint {
+        position: Vec3,
+        normal: Vec3,
+        radiance_area: Vec3,
+        two_sided: bool,
+    },
+    /// Parallel light of irradiance E (W/m²) arriving from `towards_light`.
+    Directional {
+        towards_light: Vec3,
+        irradiance: Vec3,
+    },
+    /// A point light made extended: sphere `sphere` of the accel.
+    Sphere {
+        sphere: Sphere,
+        intensity: Vec3,
+        cone: Option<Cone>,
+    },
+}
+
+impl Light {
+    /// Whether the light is a Dirac in position or direction (BRDF sampling cannot hit it).
+    pub fn is_delta(&self) -> bool {
+        !matches!(self, Light::Triangle { .. } | Light::Sphere { .. })
+    }
+
+    /// Radiant intensity of a point-like light towards unit `direction`.
+    pub(crate) fn intensity_towards(intensity: Vec3, cone: &Option<Cone>, direction: Vec3) -> Vec3 {
+        match cone {
+            Some(c) => intensity * c.falloff(direction),
+            None => intensity,
+        }
+    }
+}
+
+/// Incident light drawn at a surface point.
+#[derive(Clone, Copy, Debug)]
+pub struct LightSample {
+    /// Unit direction from the surface towards the light.
+    pub wi: Vec3,
+    /// Incident radiance (Dirac lights: I/d² or E).
+    pub radiance: Vec3,
+    /// Solid-angle density including the light's selection probability
+    /// (Dirac lights: the selection probability).
+    pub pdf: f32,
+    pub delta: bool,
+    /// The ray whose occlusion hides the light.
+    pub shadow_ray: Ray,
+    /// Sphere the shadow ray ends on, not to be counted as an occluder.
+    pub target_sphere: Option<u32>,
+}
+
+/// How a point on an emissive triangle is drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TriangleSampling {
+    /// Uniform in area: pdf d² / (A cos θ_q) in solid angle.
+    #[default]
+    Area,
+    /// Uniform in the solid angle Ω the triangle subtends: pdf 1/Ω; area
+    /// sampling where Ω is outside [`SOLID_ANGLE_RANGE`].
+    SolidAngle,
+}
+
+/// Solid angles (sr) sampled as spherical triangles; outside, f32 and f64
+/// rounding make Arvo's method unreliable and area sampling takes over
+/// (pbrt-v4's bounds).
+pub const SOLID_ANGLE_RANGE: std::ops::RangeInclusive<f64> = 3e-4..=6.22;
 
 /// The light that point `b` (barycentrics) of triangle light `light`
 /// sends to `at`, with the shadow ray between them and the solid-angle pdf

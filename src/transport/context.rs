@@ -3,11 +3,14 @@
 //! per first hit. Built once per film; the integrators
 //! (`transport::fast`, `transport::lecture`) only read it.
 
+//! Its one `impl` builds it; the estimators' entry points, one per use,
+//! are the functions of `transport` (`transport/mod.rs`).
+
 use std::sync::Arc;
 
+use crate::course::RenderSettings;
 use crate::geometry::accel::Accel;
 use crate::geometry::camera::CameraRays;
-use crate::render::settings::RenderSettings;
 use crate::scene::{Camera, Scene};
 use crate::transport::continuations::Continuations;
 use crate::transport::lights::LightTable;
@@ -28,6 +31,7 @@ pub struct RenderContext {
     /// diagonal (at least 1 m), found once, not per ray (it reads every vertex).
     pub escape_length: f32,
 }
+
 impl RenderContext {
     /// Builds the lights and the BVH of `scene` for `settings`, with the scene's default camera.
     pub fn new(scene: impl Into<Arc<Scene>>, settings: RenderSettings) -> Self {
