@@ -126,6 +126,12 @@ impl TermSet {
             t => t.index() as u32,
         })
     }
+
+    /// The last reflection a path needs for these terms within
+    /// `max_bounces` (0: none, L0 alone or no term).
+    pub fn last_reflection(self, max_bounces: u32) -> u32 {
+        self.max_reflections().unwrap_or(0).min(max_bounces)
+    }
 }
 
 impl fmt::Display for TermSet {

@@ -2,6 +2,7 @@
 //! it skipped, and the samples the film's guard dropped.
 
 use crate::course::Term;
+use glam::Vec3;
 
 /// Rays traced, by kind and by the lowest selected term each serves: the
 /// shadow ray or gathered direction at the k-th reflection serves L_k; a ray
@@ -108,4 +109,17 @@ impl RayCounts {
         self.invalid_samples += other.invalid_samples;
         self.escaped += other.escaped;
     }
+}
+
+/// What the continuations of one pilot sample brought (`transport::pilot_sample`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContinuationSplit {
+    /// The radiance of each of the two continuations, summed over the
+    /// terms and unweighted (what it would bring alone, M = 1).
+    pub continuations: [Vec3; 2],
+    /// `RayCounts::total` once the first vertex's light samples are traced,
+    /// then once the continuations are: the rays of each part, by difference
+    /// with the count before the sample.
+    pub first_rays: u64,
+    pub continuation_rays: u64,
 }

@@ -29,10 +29,26 @@
 //! The continuation is drawn uniformly, by cosine or by the BRDF
 //! (`indirect_sampling`); at the first hit the path splits into M
 //! continuations, each with β / M (`indirect_samples`, or the pilot's count
-//! per region: `splitting.rs`). Russian roulette starts after the fourth
-//! reflection, on the sample's throughput M β so that splitting does not
-//! shorten the continuations. Work no selected term needs is skipped and
-//! counted (`tally.rs`). `docs/light-transport.md` gives the details.
+//! per region: `splitting.rs`). Russian roulette (`roulette.rs`) decides
+//! from the segment reaching the fifth vertex on (it touches L4 and beyond
+//! only), on the sample's throughput M β so that splitting does not shorten
+//! the continuations. Work no selected term needs is skipped and counted
+//! (`tally.rs`). `docs/light-transport.md` gives the details.
+//!
+//! ## Where each term is computed
+//!
+//! Every contribution goes through [`Walk::file_under`], under the term of
+//! the vertex that reflected it last: each [`Vertex`] knows its term once
+//! (`Vertex::term`: L1 at the first hit p, **L2 at q**, the second vertex,
+//! L3+ beyond). The path loop, [`Walk::camera_path`] then
+//! [`Walk::path_from`], reads as the lecture's `radiance_by_term`:
+//!
+//! | term | in the lecture integrator | here |
+//! |---|---|---|
+//! | L0 | `l[0] = emission(…)` | the camera ray's `follow(ray, Term::L0, …)` in `camera_path` |
+//! | L1 | `l[1] = direct_lighting(p)` | `direct_lighting(p, …)` in `camera_path`, and what p's continuations hit |
+//! | L2 | `l[2] = weight · direct_lighting(q)` | `direct_lighting(&x, …)` in `path_from` at its first vertex x = q, and what q's continuation hits |
+//! | L3+ | `beyond_two_reflections` | the same lines of `path_from` at the later vertices |
 
 use glam::Vec3;
 
@@ -43,8 +59,9 @@ use crate::geometry::Ray;
 use crate::geometry::accel::{Accel, Hit, Query};
 use crate::transport::brdf::{Brdf, BrdfSample};
 use crate::transport::context::RenderContext;
-use crate::transport::counts::RayCounts;
+use crate::transport::counts::{ContinuationSplit, RayCounts};
 use crate::transport::path_log::{PathLog, SegmentKind};
+use crate::transport::roulette;
 use crate::transport::sampler::{SampleStream, dim};
 use crate::transport::surface::{SurfacePoint, leaves_on_its_side};
 use crate::transport::tally::Tally;
@@ -52,25 +69,6 @@ use crate::transport::warps::{
     UNIFORM_HEMISPHERE_PDF, balance_heuristic, cosine_hemisphere, cosine_hemisphere_pdf,
     power_heuristic, uniform_hemisphere,
 };
-
-/// The reflections after which Russian roulette may end a path: from the
-/// fourth on, so that it only touches L3+ and never its largest part, the
-/// third reflection's (its light samples and what the continuation after
-/// it hits), where the roulette's weights 1/q would add the most noise.
-pub const ROULETTE_FROM_REFLECTION: u32 = 4;
-
-/// What the continuations of one pilot sample brought (`transport::pilot_sample`).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct ContinuationSplit {
-    /// The radiance of each of the two continuations, summed over the
-    /// terms and unweighted (what it would bring alone, M = 1).
-    pub continuations: [Vec3; 2],
-    /// `RayCounts::total` once the first vertex's light samples are traced,
-    /// then once the continuations are: the rays of each part, by difference
-    /// with the count before the sample.
-    pub first_rays: u64,
-    pub continuation_rays: u64,
-}
 
 /// The splitting pilot's sample along camera ray `ray`: two continuations
 /// at the first hit, whatever the settings say, and what each brought; unguarded.
@@ -81,7 +79,8 @@ pub(crate) fn pilot_radiance(
     counts: &mut RayCounts,
 ) -> (TermRadiance, ContinuationSplit) {
     let mut split = ContinuationSplit::default();
-    let radiance = Walk::new(context, counts, None).split_path(ray, stream, 2, Some(&mut split));
+    let tally = Tally::new(counts, None, Some(&mut split), context.escape_length);
+    let radiance = Walk::new(context, tally, context.settings.terms).camera_path(ray, stream, 2);
     (radiance, split)
 }
 
@@ -94,7 +93,8 @@ pub(crate) fn logged_radiance(
     counts: &mut RayCounts,
     log: &mut PathLog,
 ) -> TermRadiance {
-    Walk::new(context, counts, Some(log)).camera_path(ray, stream, splits)
+    let tally = Tally::new(counts, Some(log), None, context.escape_length);
+    Walk::new(context, tally, context.settings.terms).camera_path(ray, stream, splits)
 }
 
 /// The fast integrator's radiance along camera ray `ray` (unit direction),
@@ -108,9 +108,8 @@ pub(crate) fn radiance(
     splits: u32,
     counts: &mut RayCounts,
 ) -> TermRadiance {
-    let mut walk = Walk::new(context, counts, None);
-    walk.restrict_terms(terms);
-    walk.camera_path(ray, stream, splits)
+    let tally = Tally::new(counts, None, None, context.escape_length);
+    Walk::new(context, tally, terms).camera_path(ray, stream, splits)
 }
 
 /// A distribution of directions on the hemisphere of a vertex.
@@ -167,20 +166,29 @@ struct Vertex {
     /// Geometric normal on the side the path arrives from.
     ng: Vec3,
     wo_local: Vec3,
-    /// Reflections before this one (0: the first hit).
+    /// Reflections before this one: 0 at the first hit p, 1 at q, …
     index: u32,
+    /// The term of the light this vertex reflects towards the camera, its
+    /// (index + 1)-th reflection: L1 at p, L2 at q, L3+ beyond. Its direct
+    /// lighting and what its continuation hits are filed under it.
+    term: Term,
 }
 
-/// The state of one sample: the context it reads, its bookkeeping (counters
-/// and log), and the radiance gathered so far. Its small steps are inlined
-/// into the path loop (`#[inline(always)]`): split apart, the per-vertex
-/// calls and moves cost the defaults several percent.
+/// The state of one sample: the context it reads, its bookkeeping (counters,
+/// log, the pilot's measurement: [`Tally`]), and the radiance filed so far
+/// under each term. Its small steps are inlined into the path loop
+/// (`#[inline(always)]`): split apart, the per-vertex calls and moves cost
+/// the defaults several percent.
 struct Walk<'a> {
     context: &'a RenderContext,
     tally: Tally<'a>,
     radiance: TermRadiance,
+    /// The terms computed (the settings', or fewer for adaptive sampling).
     terms: TermSet,
+    /// The last reflection those terms need ([`TermSet::last_reflection`]).
     last_reflection: u32,
+    /// Light samples per vertex ([`crate::transport::lights::LightTable::samples_per_vertex`]).
+    light_samples: u32,
     can_hit_lights: bool,
     /// The continuations of the first hit this path is one of: its
     /// throughput carries 1/M, which Russian roulette must not read as a
@@ -189,115 +197,116 @@ struct Walk<'a> {
 }
 
 impl<'a> Walk<'a> {
-    fn new(
-        context: &'a RenderContext,
-        counts: &'a mut RayCounts,
-        log: Option<&'a mut PathLog>,
-    ) -> Self {
+    /// A sample computing the terms of `terms` within the settings' terms.
+    fn new(context: &'a RenderContext, tally: Tally<'a>, terms: TermSet) -> Self {
         let settings = &context.settings;
-        let terms = settings.terms;
+        let terms = terms.intersection(settings.terms);
         Self {
             context,
-            tally: Tally::new(counts, log, context.escape_length),
+            tally,
             radiance: [Vec3::ZERO; Term::COUNT],
             terms,
-            last_reflection: terms
-                .max_reflections()
-                .unwrap_or(0)
-                .min(settings.max_bounces),
+            last_reflection: terms.last_reflection(settings.max_bounces),
+            light_samples: context.lights.samples_per_vertex(settings),
             can_hit_lights: context.lights.has_hittable_lights(),
             splits: 1.0,
         }
     }
 
-    /// Computes only the terms of `terms` (within the settings' terms).
-    fn restrict_terms(&mut self, terms: TermSet) {
-        let settings = &self.context.settings;
-        self.terms = terms.intersection(settings.terms);
-        self.last_reflection = self
-            .terms
-            .max_reflections()
-            .unwrap_or(0)
-            .min(settings.max_bounces);
-    }
-
-    /// The whole sample: the camera segment, then the first vertex and its
-    /// `splits` continuations.
-    fn camera_path(self, ray: Ray, stream: &SampleStream, splits: u32) -> TermRadiance {
-        self.split_path(ray, stream, splits, None)
-    }
-
-    /// [`Walk::camera_path`] with `splits` continuations at the first hit,
-    /// telling `split` (if given) what each continuation brought.
+    /// Adds `radiance` to the sample's term `term`: every contribution of
+    /// the walk is filed here.
     #[inline(always)]
-    fn split_path(
-        mut self,
-        ray: Ray,
-        stream: &SampleStream,
-        splits: u32,
-        mut split: Option<&mut ContinuationSplit>,
-    ) -> TermRadiance {
+    fn file_under(&mut self, term: Term, radiance: Vec3) {
+        self.radiance[term.index()] += radiance;
+    }
+
+    /// The whole sample, in the order of the lecture's `radiance_by_term`:
+    /// the camera ray and L0; direct lighting at p, L1; then along each of
+    /// p's `splits` continuations, the rest of the path ([`Walk::path_from`]:
+    /// L2 at q, L3+ beyond).
+    #[inline(always)]
+    fn camera_path(mut self, ray: Ray, stream: &SampleStream, splits: u32) -> TermRadiance {
+        // ── L0: the emission of the point p the camera sees
         self.tally.camera_ray(lowest_selected(self.terms, 0));
-        let first = self.follow(ray, 0, Vec3::ONE, EmissionWeight::One, SegmentKind::Camera);
-        let Some(first) = &first else {
-            if let Some(split) = split {
-                split.first_rays = self.tally.rays_so_far();
-                split.continuation_rays = split.first_rays;
-            }
-            return self.radiance;
+        let first = self.follow(
+            ray,
+            Term::L0,
+            0,
+            Vec3::ONE,
+            EmissionWeight::One,
+            SegmentKind::Camera,
+        );
+        let Some(p) = &first else {
+            return self.finish();
         };
-        let gather = self.gather_plan(first, splits);
-        self.direct_lighting(first, Vec3::ONE, stream, gather);
-        if let Some(split) = split.as_deref_mut() {
-            split.first_rays = self.tally.rays_so_far();
-        }
+
+        // ── L1: direct lighting at p (p.term is L1)
+        let gather = self.gather_plan(p, splits);
+        self.direct_lighting(p, Vec3::ONE, stream, gather);
+        self.tally.first_vertex_lit();
+
+        // ── L2, L3+: M continuations from p, each with throughput 1/M
         self.splits = splits as f32;
         for m in 0..splits {
             let before = self.radiance;
             let stream = stream.split(m, splits);
-            let mut throughput = Vec3::splat(1.0 / splits as f32);
-            if let Some(vertex) = self.continuation(first, &mut throughput, &stream, gather) {
-                self.rest_of_path(vertex, throughput, &stream);
-            }
-            if let Some(split) = split.as_deref_mut()
-                && let Some(slot) = split.continuations.get_mut(m as usize)
-            {
-                let added = self.radiance.iter().zip(&before).map(|(a, b)| *a - *b);
-                *slot = added.sum::<Vec3>() * splits as f32;
-            }
+            self.path_from(p, Vec3::splat(1.0 / splits as f32), &stream, gather);
+            self.tally
+                .continuation_brought(m, splits, &before, &self.radiance);
         }
-        if let Some(split) = split {
-            split.continuation_rays = self.tally.rays_so_far();
-        }
-        self.radiance
+        self.finish()
     }
 
-    /// The path from `vertex` on: direct lighting and one continuation per vertex.
+    /// The path after vertex `x` (direct lighting at `x` done, `gather` its
+    /// plan), going on with throughput β = `throughput`: at each step the
+    /// continuation from x (what it hits is filed under x's term; Russian
+    /// roulette), then the direct lighting of the vertex it reaches: **L2 at
+    /// q**, the second vertex, L3+ beyond.
     #[inline]
-    fn rest_of_path(&mut self, mut vertex: Vertex, mut throughput: Vec3, stream: &SampleStream) {
+    fn path_from(
+        &mut self,
+        x: &Vertex,
+        mut throughput: Vec3,
+        stream: &SampleStream,
+        gather: Gather,
+    ) {
+        let Some(mut x) = self.continuation(x, &mut throughput, stream, gather) else {
+            return;
+        };
         loop {
-            let gather = self.gather_plan(&vertex, 1);
-            self.direct_lighting(&vertex, throughput, stream, gather);
-            match self.continuation(&vertex, &mut throughput, stream, gather) {
-                Some(next) => vertex = next,
+            // ── direct lighting at x, filed under x.term: L2 at q, L3+ beyond
+            let gather = self.gather_plan(&x, 1);
+            self.direct_lighting(&x, throughput, stream, gather);
+            // ── the continuation from x, and roulette
+            match self.continuation(&x, &mut throughput, stream, gather) {
+                Some(next) => x = next,
                 None => return,
             }
         }
     }
 
-    /// Traces `ray` (the path's segment number `reflections`, 0 from the
-    /// camera), files the emission it meets with `weight`, and returns the
-    /// vertex it reaches if the path may reflect there.
+    /// The radiance of the sample, per term, once its bookkeeping is closed.
+    #[inline(always)]
+    fn finish(mut self) -> TermRadiance {
+        self.tally.sample_done();
+        self.radiance
+    }
+
+    /// Traces `ray`, the segment that reaches the path's vertex number
+    /// `reflections` (0: from the camera), files under `term` (L0 from the
+    /// camera, else the term of the vertex it leaves) the emission it meets
+    /// with `weight`, and returns the vertex it reaches if the path may
+    /// reflect there.
     #[inline(always)]
     fn follow(
         &mut self,
         ray: Ray,
+        term: Term,
         reflections: u32,
         throughput: Vec3,
         weight: EmissionWeight,
         kind: SegmentKind,
     ) -> Option<Vertex> {
-        let term = Term::of_reflections(reflections);
         let counted = weight != EmissionWeight::Zero && self.terms.contains(term);
         let Some(hit) = self.accel().closest_hit(&ray) else {
             self.tally.escaped(&ray, kind, term);
@@ -323,7 +332,7 @@ impl<'a> Walk<'a> {
                 self.vertex(point, wo, reflections)
             }
         };
-        self.radiance[term.index()] += emitted;
+        self.file_under(term, emitted);
         self.tally.segment(
             &ray,
             ray.at(hit.t()),
@@ -363,7 +372,7 @@ impl<'a> Walk<'a> {
             }
         };
         let added = scale * le * w;
-        self.radiance[term.index()] += added;
+        self.file_under(term, added);
         if self.tally.is_logging() {
             let accel = self.accel();
             self.tally
@@ -390,33 +399,23 @@ impl<'a> Walk<'a> {
             ng,
             wo_local: frame.to_local(wo),
             index: reflections,
+            term: Term::of_reflections(reflections + 1),
         })
     }
 
     /// Whether and how directions are gathered at `vertex`, which has `continuations`.
     #[inline(always)]
-    fn gather_plan(&mut self, vertex: &Vertex, continuations: u32) -> Gather {
+    fn gather_plan(&self, vertex: &Vertex, continuations: u32) -> Gather {
         let settings = &self.context.settings;
         let wanted = !vertex.brdf.is_delta()
-            && self.terms.contains_reflections(vertex.index + 1)
+            && self.terms.contains(vertex.term)
             && gather_directions(settings.light_sampling).is_some();
-        if wanted && !self.can_hit_lights {
-            self.tally.no_gathered_directions(
-                self.context
-                    .lights
-                    .samples_per_vertex(&self.context.settings),
-            );
-        }
         // M > 1 continuations double as gathered directions only where
         // they are traced anyway, to serve a later term
         let traced_anyway = vertex.index + 1 < self.last_reflection;
         if !(wanted && self.can_hit_lights) {
             Gather::None
-        } else if self
-            .context
-            .lights
-            .samples_per_vertex(&self.context.settings)
-            <= 1
+        } else if self.light_samples <= 1
             && (continuations == 1 || traced_anyway)
             && gather_directions(settings.light_sampling)
                 == Some(self.continuation_directions(&vertex.brdf))
@@ -431,7 +430,9 @@ impl<'a> Walk<'a> {
 
     // ── direct lighting ──────────────────────────────────────────────
 
-    /// The light samples and separately gathered directions of `vertex`, filed under its next term.
+    /// The direct lighting of `vertex`, filed under its term (L1 at p, L2
+    /// at q, L3+ beyond): its light samples and its separately gathered
+    /// directions.
     #[inline(always)]
     fn direct_lighting(
         &mut self,
@@ -443,21 +444,17 @@ impl<'a> Walk<'a> {
         if vertex.brdf.is_delta() {
             return;
         }
-        if !self.terms.contains_reflections(vertex.index + 1) {
+        if !self.terms.contains(vertex.term) {
             // counted when the settings leave the term out (not when adaptive sampling does)
-            let settings_off = !self
-                .context
-                .settings
-                .terms
-                .contains_reflections(vertex.index + 1);
+            let settings_off = !self.context.settings.terms.contains(vertex.term);
             self.tally.no_direct_lighting(settings_off);
             return;
         }
         let settings = &self.context.settings;
-        let count = self
-            .context
-            .lights
-            .samples_per_vertex(&self.context.settings);
+        let count = self.light_samples;
+        if !self.can_hit_lights && gather_directions(settings.light_sampling).is_some() {
+            self.tally.no_gathered_directions(count);
+        }
         let share = throughput / count as f32;
         let light_samples = match settings.light_sampling {
             LightSampling::Area | LightSampling::SolidAngle | LightSampling::Mis => true,
@@ -527,7 +524,6 @@ impl<'a> Walk<'a> {
             self.tally.no_shadow_ray();
             return;
         }
-        let term = Term::of_reflections(vertex.index + 1);
         let occluded = self
             .accel()
             .occluded(&light.shadow_ray, light.target_sphere);
@@ -539,11 +535,11 @@ impl<'a> Walk<'a> {
                 self.mis(light.pdf, directions * brdf_pdf)
             };
             added = contribution * weight;
-            self.radiance[term.index()] += added;
+            self.file_under(vertex.term, added);
         }
         let (ray, target_sphere) = (light.shadow_ray, light.target_sphere);
         self.tally
-            .shadow_ray(&ray, occluded, target_sphere, term, added);
+            .shadow_ray(&ray, occluded, target_sphere, vertex.term, added);
     }
 
     /// One direction gathered at `vertex` (traced on its own), counted if it finds a light.
@@ -565,12 +561,11 @@ impl<'a> Walk<'a> {
         if wi.dot(vertex.ng) <= 0.0 {
             return; // below the geometric surface: shading-normal artefact
         }
-        let term = Term::of_reflections(vertex.index + 1);
-        self.tally.gathered_direction(term);
+        self.tally.gathered_direction(vertex.term);
         let ray = vertex.point.spawn_ray(wi);
         let weight = self.gather_weight(vertex, sample.pdf);
         let kind = SegmentKind::Gather { hit_light: false };
-        self.find_emitter(&ray, throughput * sample.weight, weight, kind, term);
+        self.find_emitter(&ray, throughput * sample.weight, weight, kind, vertex.term);
     }
 
     /// The weight of an emission hit found by a gathered direction of density `pdf` at `vertex`.
@@ -603,7 +598,8 @@ impl<'a> Walk<'a> {
 
     /// Draws and traces the next reflection from `vertex`, updating
     /// `throughput` (β at `vertex`) to β at the next vertex: that vertex, if
-    /// the path goes on.
+    /// the path goes on. What the continuation hits is light `vertex`
+    /// reflects: it is filed under `vertex.term`.
     #[inline(always)]
     fn continuation(
         &mut self,
@@ -618,7 +614,7 @@ impl<'a> Walk<'a> {
         let finds_lights = delta || matches!(gather, Gather::Continuation { .. });
         // past the last term, a continuation only serves to hit an emitter
         if next >= self.last_reflection
-            && !(finds_lights && self.can_hit_lights && self.terms.contains_reflections(next))
+            && !(finds_lights && self.can_hit_lights && self.terms.contains(vertex.term))
         {
             self.tally.no_continuation();
             return None;
@@ -644,10 +640,10 @@ impl<'a> Walk<'a> {
         };
         *throughput *= sample.weight;
 
-        // russian roulette, on the throughput of the sample, not of one
-        // of its M continuations
-        if next >= ROULETTE_FROM_REFLECTION {
-            let survival = (*throughput * self.splits).max_element().min(0.95);
+        // Russian roulette (`roulette.rs`), on the throughput of the
+        // sample, not of one of its M continuations
+        if next >= roulette::FAST_FIRST_SEGMENT {
+            let survival = roulette::survival(*throughput * self.splits);
             if stream.uniform(base + dim::RUSSIAN_ROULETTE) >= survival {
                 self.tally.ended_by_roulette();
                 return None;
@@ -661,11 +657,10 @@ impl<'a> Walk<'a> {
         };
         if next >= self.last_reflection {
             // the path ends where this ray lands: it only looks for a light
-            let term = Term::of_reflections(next);
-            self.find_emitter(&ray, *throughput, weight, kind, term);
+            self.find_emitter(&ray, *throughput, weight, kind, vertex.term);
             return None;
         }
-        self.follow(ray, next, *throughput, weight, kind)
+        self.follow(ray, vertex.term, next, *throughput, weight, kind)
     }
 
     // ── emission ─────────────────────────────────────────────────────

@@ -28,13 +28,10 @@ use crate::geometry::accel::Hit;
 use crate::geometry::{Frame, Ray};
 use crate::transport::brdf::Brdf;
 use crate::transport::context::RenderContext;
+use crate::transport::roulette;
 use crate::transport::sampler::{SampleStream, dim};
 use crate::transport::sources::SourceBudget;
 use crate::transport::surface::{SurfacePoint, leaves_on_its_side};
-
-/// The reflections after which Russian roulette may end a path: it decides
-/// from the fourth reflection on, inside L3+.
-const ROULETTE_FROM_REFLECTION: u32 = 3;
 
 /// The radiance arriving along `camera_ray` (unit direction), per term; the
 /// terms outside `terms` are zero.
@@ -61,10 +58,7 @@ fn radiance_by_term(
     terms: TermSet,
 ) -> TermRadiance {
     let mut l = [Vec3::ZERO; Term::COUNT];
-    let reflections = terms
-        .max_reflections()
-        .unwrap_or(0)
-        .min(context.settings.max_bounces);
+    let reflections = terms.last_reflection(context.settings.max_bounces);
 
     // ── L0 = L_e(p, ωo): the emission of the point p the camera sees
     let Some(hit) = context.accel.closest_hit(camera_ray) else {
@@ -113,10 +107,10 @@ fn beyond_two_reflections(
             break;
         };
         beta *= weight;
-        // Russian roulette: go on with probability P and divide by P, which
-        // keeps the mean and ends paths that carry little
-        if k >= ROULETTE_FROM_REFLECTION {
-            let survival = beta.max_element().min(0.95);
+        // Russian roulette: go on with probability q and divide by q, which
+        // keeps the mean and ends paths that carry little (`roulette.rs`)
+        if k >= roulette::LECTURE_FIRST_SEGMENT {
+            let survival = roulette::survival(beta);
             let u = stream.uniform(dim::vertex_base(k) + dim::RUSSIAN_ROULETTE);
             if u >= survival {
                 break;

@@ -23,6 +23,7 @@
 //! | `surface.rs` | what a ray hit, seen as a surface: normals, emission, BRDF |
 //! | `sampler.rs` | random numbers: independent, stratified, Sobol |
 //! | `warps.rs` | uniform numbers → directions and points with known densities; the alias table; MIS heuristics |
+//! | `roulette.rs` | Russian roulette: one rule, and where each integrator starts it |
 //! | `splitting.rs` | the pilot that chooses continuations per first hit |
 //! | `continuations.rs` | the continuations per pixel the samples take |
 //! | `counts.rs`, `tally.rs`, `path_log.rs` | what a sample counts and logs (the fast integrator's bookkeeping) |
@@ -37,6 +38,7 @@ pub mod lecture;
 pub mod light;
 pub mod lights;
 pub mod path_log;
+pub mod roulette;
 pub mod sampler;
 pub mod sources;
 pub mod splitting;
@@ -49,8 +51,8 @@ use glam::Vec3;
 use crate::course::{Integrator, TermRadiance, TermSet};
 use crate::geometry::Ray;
 use crate::transport::context::RenderContext;
+use crate::transport::counts::ContinuationSplit;
 use crate::transport::counts::RayCounts;
-use crate::transport::fast::ContinuationSplit;
 use crate::transport::path_log::PathLog;
 use crate::transport::sampler::{SampleStream, dim};
 

@@ -59,8 +59,8 @@ use crate::course::Sampler;
 use crate::course::error::RELMSE_EPSILON;
 use crate::transport::context::RenderContext;
 use crate::transport::continuations::{Continuations, SplitMap};
+use crate::transport::counts::ContinuationSplit;
 use crate::transport::counts::RayCounts;
-use crate::transport::fast::ContinuationSplit;
 use crate::transport::pilot_sample;
 use crate::transport::sampler::SampleStream;
 
@@ -156,11 +156,7 @@ pub fn choose_continuations(context: &mut RenderContext) {
 /// Whether the settings' terms use a continuation of the first hit at all.
 fn continuations_matter(context: &RenderContext) -> bool {
     let settings = &context.settings;
-    let last = settings
-        .terms
-        .max_reflections()
-        .unwrap_or(0)
-        .min(settings.max_bounces);
+    let last = settings.terms.last_reflection(settings.max_bounces);
     // below L2 a continuation only finds lights for L1, which is not split
     last >= 2
 }

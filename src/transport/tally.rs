@@ -1,41 +1,86 @@
 //! The fast integrator's bookkeeping, kept out of its path loop: what a
 //! sample counts (rays by kind and by term, work skipped, rays that left
-//! the scene) and, when asked, the log of every ray it traced. The path
-//! loop makes one call per event.
+//! the scene) and, when asked, the log of every ray it traced and the
+//! splitting pilot's measurement. The path loop makes one call per event;
+//! these observe the path, none changes it.
 
 use glam::Vec3;
 
 use crate::course::Term;
+use crate::course::TermRadiance;
 use crate::geometry::Ray;
 use crate::geometry::accel::{Accel, Query};
-use crate::transport::counts::RayCounts;
+use crate::transport::counts::{ContinuationSplit, RayCounts};
 use crate::transport::path_log::{PathLog, PathSegment, SegmentKind};
 
 /// The counters and the log one sample writes.
 pub(crate) struct Tally<'a> {
     counts: &'a mut RayCounts,
     log: Option<&'a mut PathLog>,
+    /// The splitting pilot's measurement, if this sample is the pilot's.
+    pilot: Option<&'a mut ContinuationSplit>,
+    /// The rays traced once the first vertex was lit (the pilot's).
+    first_rays: Option<u64>,
     /// How far the log draws a ray that left the scene.
     escape_length: f32,
 }
 
 impl<'a> Tally<'a> {
+    /// The bookkeeping of a sample that adds to `counts`, logs its rays
+    /// to `log` and tells `pilot` what its continuations brought, if given.
     pub fn new(
         counts: &'a mut RayCounts,
         log: Option<&'a mut PathLog>,
+        pilot: Option<&'a mut ContinuationSplit>,
         escape_length: f32,
     ) -> Self {
         Self {
             counts,
             log,
+            pilot,
+            first_rays: None,
             escape_length,
         }
     }
 
-    /// Rays traced so far (the splitting pilot reads it between parts of a sample).
+    // ── the splitting pilot's measurement
+
+    /// The first vertex's direct lighting is done: the pilot's first part ends.
     #[inline(always)]
-    pub fn rays_so_far(&self) -> u64 {
-        self.counts.total()
+    pub fn first_vertex_lit(&mut self) {
+        if self.pilot.is_some() {
+            self.first_rays = Some(self.counts.total());
+        }
+    }
+
+    /// Continuation `m` of `splits` is done, the sample's radiance going
+    /// from `before` to `after`: the pilot keeps what it brought, summed
+    /// over the terms and unweighted (M times what was filed).
+    #[inline(always)]
+    pub fn continuation_brought(
+        &mut self,
+        m: u32,
+        splits: u32,
+        before: &TermRadiance,
+        after: &TermRadiance,
+    ) {
+        if let Some(pilot) = self.pilot.as_deref_mut()
+            && let Some(slot) = pilot.continuations.get_mut(m as usize)
+        {
+            let added = after.iter().zip(before).map(|(a, b)| *a - *b);
+            *slot = added.sum::<Vec3>() * splits as f32;
+        }
+    }
+
+    /// The sample is done: the pilot's continuations end here (and its
+    /// first part too if the camera ray found no vertex).
+    #[inline(always)]
+    pub fn sample_done(&mut self) {
+        let rays = self.counts.total();
+        if let Some(pilot) = self.pilot.as_deref_mut() {
+            pilot.first_rays = self.first_rays.unwrap_or(rays);
+            pilot.continuation_rays = rays;
+        }
     }
 
     // ── rays traced, each under the index of the lowest term it serves
