@@ -262,7 +262,7 @@ impl<'a> Walk<'a> {
     /// continuation from x (what it hits is filed under x's term; Russian
     /// roulette), then the direct lighting of the vertex it reaches: **L2 at
     /// q**, the second vertex, L3+ beyond.
-    #[inline]
+    #[inline(always)]
     fn path_from(
         &mut self,
         x: &Vertex,
