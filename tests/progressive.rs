@@ -14,7 +14,7 @@ fn request() -> ViewRequest {
     let scene = Arc::new(builtin::cornell());
     ViewRequest {
         camera: scene.default_camera(),
-        scene,
+        scene: scene.into(),
         settings: RenderSettings {
             width: 48,
             height: 36,
@@ -314,4 +314,41 @@ fn between_frames_the_worker_renders_the_same_film_a_few_tiles_at_a_time() {
         bits(&got) == bits(&expected),
         "the film rendered between frames differs from the worker thread's"
     );
+}
+
+/// A request that does not restart (here a pause) stops the pass between
+/// tiles; the pass goes on from its tiles once the worker runs again, and
+/// the film is the one rendered without the pause, bit for bit.
+#[test]
+fn a_pause_in_the_middle_of_a_pass_keeps_its_tiles() {
+    let mut request = request();
+    request.stop_at_spp = Some(2);
+    let whole = ProgressiveRenderer::between_frames(request.clone(), || {});
+    while whole.run_between_frames(Duration::ZERO) {}
+    let renderer = ProgressiveRenderer::between_frames(request.clone(), || {});
+    // the preview, then five bands of 4 rows of the first pass
+    for call in 0..6 {
+        assert!(renderer.run_between_frames(Duration::ZERO), "call {call}");
+    }
+    let mut paused = request.clone();
+    paused.paused = true;
+    renderer.request(paused);
+    assert!(
+        !renderer.run_between_frames(Duration::ZERO),
+        "paused: nothing to do"
+    );
+    renderer.request(request);
+    let mut calls = 0;
+    while renderer.run_between_frames(Duration::ZERO) {
+        calls += 1;
+    }
+    let bands = 36 / 4;
+    assert_eq!(calls, 2 * bands - 5, "the rest of the first pass, then one");
+    let (got, expected) = (renderer.snapshot(), whole.snapshot());
+    assert_eq!(got.term_samples, expected.term_samples);
+    assert_eq!(got.restarts, 1, "a pause does not restart");
+    let bits = |s: &Snapshot| -> Vec<[u32; 4]> {
+        s.radiance.iter().map(|p| p.map(f32::to_bits)).collect()
+    };
+    assert!(bits(&got) == bits(&expected));
 }

@@ -80,7 +80,7 @@ fn same_seed_same_image_for_any_thread_count() {
 fn a_pass_rendered_tile_by_tile_gives_the_same_film() {
     use lumiere::course::Adaptive;
     use lumiere::platform::time::Instant;
-    use lumiere::render::{PartialPass, PassBuffer, render_pass, render_pass_until};
+    use lumiere::render::{Pass, PassBuffer, Until, render_pass};
 
     let settings = RenderSettings {
         adaptive: Some(Adaptive {
@@ -97,16 +97,14 @@ fn a_pass_rendered_tile_by_tile_gives_the_same_film() {
         let counts = render_pass(&context, &mut whole, pass, &mut buffer);
         skipped += counts.skipped.converged;
         // a deadline already passed: one tile per call
-        let mut partial = PartialPass::new(&context, &tiled, pass);
+        let mut partial = Pass::new(&context, &tiled, pass);
         let mut calls = 1;
         let tiled_counts = loop {
-            match render_pass_until(
-                &context,
-                &mut tiled,
-                &mut partial,
-                &mut tiled_buffer,
-                Instant::now(),
-            ) {
+            let until = Until {
+                cancel: None,
+                deadline: Some(Instant::now()),
+            };
+            match partial.render(&context, &mut tiled, &mut tiled_buffer, &until) {
                 Some(counts) => break counts,
                 None => calls += 1,
             }

@@ -118,7 +118,7 @@ fn thousands_of_random_setting_changes_never_block_crash_or_grow_memory() {
         .map(|s| Arc::new(builtin::load(s.name).unwrap()))
         .collect();
     let first = ViewRequest {
-        scene: Arc::clone(&scenes[0]),
+        scene: Arc::clone(&scenes[0]).into(),
         camera: scenes[0].default_camera(),
         settings: RenderSettings {
             width: 32,
@@ -140,7 +140,7 @@ fn thousands_of_random_setting_changes_never_block_crash_or_grow_memory() {
         let request = ViewRequest {
             camera: scene.default_camera(),
             settings: random_settings(&mut numbers, &scene),
-            scene,
+            scene: scene.into(),
             paused: numbers.chance(10),
             stop_at_spp: numbers.chance(3).then(|| 1 + numbers.below(4) as u32),
             // the four-up's images of each term, now and then
@@ -178,7 +178,7 @@ fn thousands_of_random_setting_changes_never_block_crash_or_grow_memory() {
     renderer.request(ViewRequest {
         camera: scene.default_camera(),
         settings: last.clone(),
-        scene,
+        scene: scene.into(),
         paused: false,
         stop_at_spp: None,
         term_images: true,

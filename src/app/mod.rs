@@ -262,7 +262,7 @@ impl LumiereApp {
         let camera = scene.default_camera();
         let ctx = cc.egui_ctx.clone();
         let request = ViewRequest {
-            scene: Arc::clone(&scene),
+            scene: Arc::clone(&scene).into(),
             settings: state.settings.clone(),
             camera: camera.clone(),
             paused: false,
@@ -364,7 +364,7 @@ impl LumiereApp {
     /// What the worker should render, from the current controls.
     pub fn view_request(&self) -> ViewRequest {
         ViewRequest {
-            scene: Arc::clone(&self.scene),
+            scene: Arc::clone(&self.scene).into(),
             settings: self.state.settings.clone(),
             camera: self.camera.clone(),
             // a reference capture gets the cores to itself
@@ -378,7 +378,7 @@ impl LumiereApp {
     /// Sends the current request if a control changed it.
     fn sync_renderer(&mut self) {
         let request = self.view_request();
-        if !same_request(&request, &self.sent) {
+        if request != self.sent {
             self.renderer.request(request.clone());
             self.sent = request;
         }
@@ -751,17 +751,6 @@ fn install_fonts(ctx: &egui::Context) {
         fonts.families.entry(family).or_default().push(NAME.into());
     }
     ctx.set_fonts(fonts);
-}
-
-/// Whether two requests ask the worker for the same thing.
-fn same_request(a: &ViewRequest, b: &ViewRequest) -> bool {
-    Arc::ptr_eq(&a.scene, &b.scene)
-        && a.settings == b.settings
-        && a.camera == b.camera
-        && a.paused == b.paused
-        && a.stop_at_spp == b.stop_at_spp
-        && a.term_images == b.term_images
-        && a.film == b.film
 }
 
 /// Opens the viewer window and runs until it is closed.

@@ -171,7 +171,7 @@ pub fn sync(app: &mut LumiereApp, ctx: &egui::Context) {
         .compare
         .sent
         .as_ref()
-        .is_none_or(|sent| !super::same_request(sent, &request));
+        .is_none_or(|sent| *sent != request);
     if changed && let Some(renderer) = &app.compare.renderer {
         renderer.request(request.clone());
         app.compare.sent = Some(request);

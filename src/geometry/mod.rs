@@ -95,6 +95,7 @@ pub fn next_float_down(v: f32) -> f32 {
 /// A ray origin for leaving the surface point `p` (with absolute rounding
 /// error at most `p_error` per axis) towards `w`, on the side of the
 /// geometric normal `ng` that `w` points to.
+#[inline]
 pub fn offset_ray_origin(p: Vec3, p_error: Vec3, ng: Vec3, w: Vec3) -> Vec3 {
     let d = ng.abs().dot(p_error);
     let offset = if w.dot(ng) < 0.0 { -d * ng } else { d * ng };

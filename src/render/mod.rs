@@ -4,7 +4,7 @@
 //! (sampler, seed, pixel, s) only, so the film is bit-identical whatever the
 //! number of threads or the order in which tiles finish. Tiles are bands of
 //! rows, handed to rayon's work-stealing pool (or, on a web page with one
-//! thread, rendered in order a few at a time: [`render_pass_until`]). With
+//! thread, a few at a time between frames: [`Pass`]). With
 //! adaptive sampling the film decides, before each pass, which terms each
 //! pixel still needs (`adaptive`); that too depends on the film alone.
 
@@ -77,56 +77,60 @@ pub fn render_pass(
     pass: u32,
     buffer: &mut PassBuffer,
 ) -> RayCounts {
-    render_pass_cancellable(context, film, pass, buffer, &AtomicBool::new(false))
-        .expect("a pass that cannot be cancelled completes")
+    Pass::new(context, film, pass)
+        .render(context, film, buffer, &Until::completed())
+        .expect("a pass that cannot be stopped completes")
 }
 
-/// [`render_pass`] that gives up, leaving `film` untouched, once `cancel` is
-/// set (checked between tiles): `None` if it was cancelled.
-pub fn render_pass_cancellable(
-    context: &RenderContext,
-    film: &mut Film,
-    pass: u32,
-    buffer: &mut PassBuffer,
-    cancel: &AtomicBool,
-) -> Option<RayCounts> {
-    let mut partial = PartialPass::new(context, film, pass);
-    let width = film.width as usize;
-    buffer
-        .samples
-        .resize(film.pixel_count(), [Vec3::ZERO; Term::COUNT]);
-    let counts = buffer
-        .samples
-        .par_chunks_mut(width * TILE_ROWS)
-        .enumerate()
-        .map(|(tile, pixels)| {
-            if cancel.load(Ordering::Relaxed) {
-                return RayCounts::default();
-            }
-            partial.render_tile(context, width, tile, pixels)
-        })
-        .reduce(RayCounts::default, |mut a, b| {
-            a.add(&b);
-            a
-        });
-    if cancel.load(Ordering::Relaxed) {
-        return None;
+/// When [`Pass::render`] stops before the pass is complete, checked between
+/// tiles: once `cancel` is set (a new request: the viewer's worker), or
+/// once `deadline` has passed (a page on one thread renders between its
+/// frames), after at least one tile.
+#[derive(Clone, Copy)]
+pub struct Until<'a> {
+    pub cancel: Option<&'a AtomicBool>,
+    pub deadline: Option<Instant>,
+}
+
+impl<'a> Until<'a> {
+    /// Never before the pass is complete.
+    pub fn completed() -> Self {
+        Self {
+            cancel: None,
+            deadline: None,
+        }
     }
-    partial.counts = counts;
-    Some(partial.finish(context, film, buffer))
+
+    fn cancelled(&self) -> bool {
+        self.cancel
+            .is_some_and(|cancel| cancel.load(Ordering::Relaxed))
+    }
+
+    /// Until `cancel` is set.
+    pub fn cancelled_by(cancel: &'a AtomicBool) -> Self {
+        Self {
+            cancel: Some(cancel),
+            deadline: None,
+        }
+    }
 }
 
-/// A pass rendered a few tiles at a time, on one thread: a page without
-/// Web Workers renders between its frames ([`render_pass_until`]).
-pub struct PartialPass {
+/// One pass (sample index) over the film, tile by tile: the one way a
+/// pass is rendered. [`Pass::render`] renders the tiles not done yet, on
+/// every thread of the pool, until the pass is complete or [`Until`] says
+/// stop; the pass keeps the tiles done for the next call. Each sample
+/// depends on its pixel and the pass only, so which tiles ran in which
+/// call changes nothing in the film.
+pub struct Pass {
     pass: u32,
     /// Adaptive sampling: the terms each pixel still needs (None: all, everywhere).
     needed: Option<Vec<TermSet>>,
-    next_tile: usize,
+    /// Which tiles hold their samples in the buffer.
+    done: Vec<bool>,
     counts: RayCounts,
 }
 
-impl PartialPass {
+impl Pass {
     /// Pass `pass` of `film`, no tile rendered yet.
     pub fn new(context: &RenderContext, film: &Film, pass: u32) -> Self {
         let terms = context.settings.terms;
@@ -135,84 +139,99 @@ impl PartialPass {
             .adaptive
             .as_ref()
             .and_then(|adaptive| terms_to_sample(film, terms, adaptive));
+        let tiles = film.pixel_count().div_ceil(film.width as usize * TILE_ROWS);
         Self {
             pass,
             needed,
-            next_tile: 0,
+            done: vec![false; tiles],
             counts: RayCounts::default(),
         }
     }
 
-    /// Tile `tile` (its `pixels` of the pass's samples): one sample each.
-    fn render_tile(
-        &self,
+    /// Renders the tiles not done yet until `until` says stop: `None`, the
+    /// film untouched, if it stopped first; else adds the pass's samples to
+    /// `film` (the one the pass was made for) and returns what it traced.
+    /// `buffer` holds the samples between calls.
+    pub fn render(
+        &mut self,
         context: &RenderContext,
-        width: usize,
-        tile: usize,
-        pixels: &mut [TermRadiance],
-    ) -> RayCounts {
-        let terms = context.settings.terms;
-        let mut counts = RayCounts::default();
-        for (offset, sample) in pixels.iter_mut().enumerate() {
-            let index = tile * width * TILE_ROWS + offset;
-            let (x, y) = ((index % width) as u32, (index / width) as u32);
-            let pixel_terms = match &self.needed {
-                Some(needed) => {
-                    let stopped = terms.iter().filter(|&t| !needed[index].contains(t));
-                    counts.skipped.converged += stopped.count() as u64;
-                    needed[index]
+        film: &mut Film,
+        buffer: &mut PassBuffer,
+        until: &Until,
+    ) -> Option<RayCounts> {
+        let width = film.width as usize;
+        buffer
+            .samples
+            .resize(film.pixel_count(), [Vec3::ZERO; Term::COUNT]);
+        // past the deadline, the one tile a call renders at least
+        let first_claimed = AtomicBool::new(false);
+        let may_start = || {
+            !until.cancelled()
+                && (until
+                    .deadline
+                    .is_none_or(|deadline| Instant::now() < deadline)
+                    || !first_claimed.swap(true, Ordering::Relaxed))
+        };
+        let (pass, needed) = (self.pass, self.needed.as_deref());
+        let counts = buffer
+            .samples
+            .par_chunks_mut(width * TILE_ROWS)
+            .zip(self.done.par_iter_mut())
+            .enumerate()
+            .map(|(tile, (pixels, done))| {
+                if *done || !may_start() {
+                    return RayCounts::default();
                 }
-                None => terms,
-            };
-            if pixel_terms.is_empty() {
-                *sample = [Vec3::ZERO; Term::COUNT];
-                continue;
-            }
-            let stream = sample_stream(&context.settings, index as u64, self.pass);
-            *sample = sample_pixel(context, x, y, &stream, pixel_terms, &mut counts);
+                *done = true;
+                render_tile(context, pass, needed, width, tile, pixels)
+            })
+            .reduce(RayCounts::default, |mut a, b| {
+                a.add(&b);
+                a
+            });
+        self.counts.add(&counts);
+        if self.done.contains(&false) {
+            return None;
         }
-        counts
-    }
-
-    /// Adds the pass's samples to `film`; what it traced.
-    fn finish(&self, context: &RenderContext, film: &mut Film, buffer: &PassBuffer) -> RayCounts {
         let terms = context.settings.terms;
-        match &self.needed {
-            Some(needed) => film.add_pass_where(terms, self.pass, &buffer.samples, needed),
-            None => film.add_pass(terms, self.pass, &buffer.samples),
+        match needed {
+            Some(needed) => film.add_pass_where(terms, pass, &buffer.samples, needed),
+            None => film.add_pass(terms, pass, &buffer.samples),
         }
-        self.counts
+        Some(self.counts)
     }
 }
 
-/// Renders tiles of `partial`, in order, until `deadline` has passed (at
-/// least one tile); once the last is done, adds the pass to `film` (the
-/// same film as [`render_pass`]'s) and returns what it traced.
-pub fn render_pass_until(
+/// Tile `tile` (its `pixels` of the pass's samples): one sample each.
+fn render_tile(
     context: &RenderContext,
-    film: &mut Film,
-    partial: &mut PartialPass,
-    buffer: &mut PassBuffer,
-    deadline: Instant,
-) -> Option<RayCounts> {
-    let width = film.width as usize;
-    buffer
-        .samples
-        .resize(film.pixel_count(), [Vec3::ZERO; Term::COUNT]);
-    let tiles = film.pixel_count().div_ceil(width * TILE_ROWS);
-    while partial.next_tile < tiles {
-        let tile = partial.next_tile;
-        // the tile's pixels, as `par_chunks_mut` cuts them
-        let pixels =
-            tile * width * TILE_ROWS..((tile + 1) * width * TILE_ROWS).min(film.pixel_count());
-        let counts = partial.render_tile(context, width, tile, &mut buffer.samples[pixels]);
-        partial.counts.add(&counts);
-        partial.next_tile += 1;
-        if partial.next_tile < tiles && Instant::now() >= deadline {
-            return None;
+    pass: u32,
+    needed: Option<&[TermSet]>,
+    width: usize,
+    tile: usize,
+    pixels: &mut [TermRadiance],
+) -> RayCounts {
+    let terms = context.settings.terms;
+    let mut counts = RayCounts::default();
+    for (offset, sample) in pixels.iter_mut().enumerate() {
+        let index = tile * width * TILE_ROWS + offset;
+        let (x, y) = ((index % width) as u32, (index / width) as u32);
+        let pixel_terms = match needed {
+            Some(needed) => {
+                let stopped = terms.iter().filter(|&t| !needed[index].contains(t));
+                counts.skipped.converged += stopped.count() as u64;
+                needed[index]
+            }
+            None => terms,
+        };
+        if pixel_terms.is_empty() {
+            *sample = [Vec3::ZERO; Term::COUNT];
+            continue;
         }
+        let stream = sample_stream(&context.settings, index as u64, pass);
+        *sample = sample_pixel(context, x, y, &stream, pixel_terms, &mut counts);
     }
-    Some(partial.finish(context, film, buffer))
+    counts
 }
 
 /// Renders until `budget` is spent (at least one pass), calling `progress`
@@ -246,12 +265,12 @@ pub fn render_cancellable(
         .min()
         .unwrap_or(0);
     loop {
-        let counts = render_pass_cancellable(
+        let pass = first_pass + stats.samples_per_pixel;
+        let counts = Pass::new(context, film, pass).render(
             context,
             film,
-            first_pass + stats.samples_per_pixel,
             &mut buffer,
-            cancel,
+            &Until::cancelled_by(cancel),
         )?;
         stats.rays.add(&counts);
         stats.samples_per_pixel += 1;

@@ -38,7 +38,7 @@ use crate::geometry::camera::CameraRays;
 use crate::platform::threads::{self, Job};
 use crate::platform::time::Instant;
 use crate::render::film::Film;
-use crate::render::{PartialPass, PassBuffer, render_pass_cancellable, render_pass_until};
+use crate::render::{Pass, PassBuffer, Until};
 use crate::scene::{Camera, Scene};
 use crate::transport::context::RenderContext;
 use crate::transport::continuations::Continuations;
@@ -46,10 +46,36 @@ use crate::transport::counts::RayCounts;
 use crate::transport::lights::LightTable;
 use crate::transport::splitting::choose_continuations;
 
-/// Everything that decides what the viewer shows.
+/// A scene as the viewer holds it, compared by identity: two requests show
+/// the same scene when they hold the same `Arc` (comparing the triangles
+/// would cost more than a frame).
 #[derive(Clone, Debug)]
+pub struct SharedScene(pub Arc<Scene>);
+
+impl PartialEq for SharedScene {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl From<Arc<Scene>> for SharedScene {
+    fn from(scene: Arc<Scene>) -> Self {
+        Self(scene)
+    }
+}
+
+impl std::ops::Deref for SharedScene {
+    type Target = Arc<Scene>;
+    fn deref(&self) -> &Arc<Scene> {
+        &self.0
+    }
+}
+
+/// Everything that decides what the viewer shows: two equal requests show
+/// the same thing.
+#[derive(Clone, Debug, PartialEq)]
 pub struct ViewRequest {
-    pub scene: Arc<Scene>,
+    pub scene: SharedScene,
     /// `terms` are the visible terms.
     pub settings: RenderSettings,
     pub camera: Camera,
@@ -224,20 +250,12 @@ impl ProgressiveRenderer {
         };
         let mut worker = lock(worker);
         let deadline = Instant::now() + budget;
-        loop {
-            let request = lock(&self.shared.mailbox).request.take();
-            self.shared.cancel.store(false, Ordering::Relaxed);
-            if let Some(request) = request {
-                worker.apply(request);
-            }
-            if worker.is_idle() {
-                return false;
-            }
-            worker.step(Some(deadline));
+        while worker.work(Some(deadline)) {
             if Instant::now() >= deadline {
                 return true;
             }
         }
+        false
     }
 
     /// Replaces what should be rendered (the latest request wins).
@@ -282,10 +300,40 @@ fn preview_continuations(settings: &RenderSettings) -> Continuations {
     })
 }
 
-/// What the worker renders now.
-struct Current {
-    request: ViewRequest,
-    context: RenderContext,
+/// What a request asks for besides the settings, which the context owns.
+struct View {
+    scene: SharedScene,
+    camera: Camera,
+    paused: bool,
+    stop_at_spp: Option<u32>,
+    term_images: bool,
+    film: u64,
+}
+
+/// `request` in two parts: its settings and the rest.
+fn split(request: ViewRequest) -> (RenderSettings, View) {
+    let ViewRequest {
+        scene,
+        settings,
+        camera,
+        paused,
+        stop_at_spp,
+        term_images,
+        film,
+    } = request;
+    let view = View {
+        scene,
+        camera,
+        paused,
+        stop_at_spp,
+        term_images,
+        film,
+    };
+    (settings, view)
+}
+
+/// What the film has accumulated since the last restart.
+struct Accumulation {
     film: Arc<Mutex<Film>>,
     next_sample: u32,
     needs_preview: bool,
@@ -297,26 +345,54 @@ struct Current {
     pixel_samples: u64,
     /// Adaptive sampling has stopped every pixel: the last pass traced nothing.
     converged: bool,
-    /// Between frames (one thread): the pass under way, some tiles done.
-    partial: Option<PartialPass>,
+    /// The pass under way, some tiles done (cancelled by a request, or
+    /// between frames on one thread).
+    pass: Option<Pass>,
+}
+
+impl Accumulation {
+    fn new(settings: &RenderSettings) -> Self {
+        Self {
+            film: Arc::new(Mutex::new(Film::new(settings.width, settings.height))),
+            next_sample: 0,
+            needs_preview: true,
+            needs_pilot: true,
+            elapsed: Duration::ZERO,
+            rays: RayCounts::default(),
+            pixel_samples: 0,
+            converged: false,
+            pass: None,
+        }
+    }
+}
+
+/// What the worker renders now; the context owns the settings.
+struct Current {
+    context: RenderContext,
+    view: View,
+    accumulation: Accumulation,
 }
 
 impl Current {
     /// Whether no pass is due, given the current film (locked by the caller).
     fn is_idle(&self, film: &Film) -> bool {
-        let request = &self.request;
-        let spp = request
+        let (view, accumulation) = (&self.view, &self.accumulation);
+        let spp = self
+            .context
             .settings
             .terms
             .iter()
             .map(|t| film.samples(t))
             .min()
             .unwrap_or(0);
-        !self.needs_preview
-            && (request.paused || self.converged || request.stop_at_spp.is_some_and(|n| spp >= n))
+        !accumulation.needs_preview
+            && (view.paused || accumulation.converged || view.stop_at_spp.is_some_and(|n| spp >= n))
     }
 }
 
+/// The worker's state machine, the same with a thread of its own and
+/// between a page's frames: [`Worker::work`] takes the latest request and
+/// does one step.
 struct Worker {
     shared: Arc<Shared>,
     repaint: Box<dyn Fn() + Send>,
@@ -338,9 +414,10 @@ impl Worker {
         }
     }
 
+    /// On a thread of its own: works, and waits while there is nothing to do.
     fn run(mut self) {
         loop {
-            let request = {
+            {
                 let mut mailbox = lock(&self.shared.mailbox);
                 while !mailbox.quit && mailbox.request.is_none() && self.is_idle() {
                     mailbox = self
@@ -352,98 +429,93 @@ impl Worker {
                 if mailbox.quit {
                     return;
                 }
-                self.shared.cancel.store(false, Ordering::Relaxed);
-                mailbox.request.take()
-            };
-            if let Some(request) = request {
-                self.apply(request);
             }
-            if !self.is_idle() {
-                self.step(None);
-            }
+            self.work(None);
         }
+    }
+
+    /// Takes the latest request, then does one step (with a `deadline`:
+    /// tiles of the pass until then). False if there was nothing to do.
+    fn work(&mut self, deadline: Option<Instant>) -> bool {
+        let request = {
+            let mut mailbox = lock(&self.shared.mailbox);
+            self.shared.cancel.store(false, Ordering::Relaxed);
+            mailbox.request.take()
+        };
+        if let Some(request) = request {
+            self.apply(request);
+        }
+        if self.is_idle() {
+            return false;
+        }
+        self.step(deadline);
+        true
     }
 
     fn is_idle(&self) -> bool {
         self.current
             .as_ref()
-            .is_none_or(|current| current.is_idle(&lock(&current.film)))
+            .is_none_or(|current| current.is_idle(&lock(&current.accumulation.film)))
     }
 
     /// Takes a new request: rebuilds, restarts or only retargets the terms.
     fn apply(&mut self, request: ViewRequest) {
-        let settings = &request.settings;
+        let (settings, view) = split(request);
         let Some(current) = &mut self.current else {
-            self.start(request);
+            self.start(settings, view);
             return;
         };
-        let old = &current.request;
-        let rebuild = !Arc::ptr_eq(&old.scene, &request.scene)
-            || !LightTable::same_lights(&old.settings, settings);
+        let old = &current.context.settings;
+        let rebuild = current.view.scene != view.scene || !LightTable::same_lights(old, &settings);
         let restart = rebuild
-            || old.camera != request.camera
-            || old.film != request.film
+            || current.view.camera != view.camera
+            || current.view.film != view.film
             || RenderSettings {
                 terms: settings.terms,
-                ..old.settings.clone()
-            } != *settings;
+                ..old.clone()
+            } != settings;
         if rebuild {
-            self.start(request);
+            self.start(settings, view);
         } else if restart {
-            current.context.settings = settings.clone();
-            current.context.camera =
-                CameraRays::new(&request.camera, settings.width, settings.height);
-            current.context.continuations = preview_continuations(settings);
-            current.needs_pilot = true;
-            current.film = Arc::new(Mutex::new(Film::new(settings.width, settings.height)));
-            *lock(&self.shared.film) = Some(Arc::clone(&current.film));
-            current.next_sample = 0;
-            current.needs_preview = true;
-            current.elapsed = Duration::ZERO;
-            current.rays = RayCounts::default();
-            current.pixel_samples = 0;
-            current.converged = false;
-            current.partial = None;
-            current.request = request;
-            self.restarts += 1;
+            current.context.settings = settings;
+            current.context.set_camera(&view.camera);
+            current.view = view;
+            self.restart();
         } else {
             // visible terms, pause, stop or the term images changed: no restart
             if current.context.settings.terms != settings.terms {
                 // the tiles done hold the old terms' samples
-                current.partial = None;
+                current.accumulation.pass = None;
             }
             current.context.settings.terms = settings.terms;
-            current.converged = false;
-            current.request = request;
+            current.accumulation.converged = false;
+            current.view = view;
             self.publish_full();
         }
     }
 
-    /// Builds lights and BVH for `request` and starts from an empty film.
-    fn start(&mut self, request: ViewRequest) {
-        let settings = request.settings.clone();
-        let mut context = RenderContext::with_camera(
-            Arc::clone(&request.scene),
-            settings.clone(),
-            Some(&request.camera),
-        );
-        context.continuations = preview_continuations(&settings);
-        let film = Arc::new(Mutex::new(Film::new(settings.width, settings.height)));
-        *lock(&self.shared.film) = Some(Arc::clone(&film));
-        self.restarts += 1;
+    /// Builds lights and BVH for the request and starts from an empty film.
+    fn start(&mut self, settings: RenderSettings, view: View) {
+        let context =
+            RenderContext::with_camera(Arc::clone(&view.scene), settings, Some(&view.camera));
+        let accumulation = Accumulation::new(&context.settings);
         self.current = Some(Current {
-            film,
             context,
-            request,
-            next_sample: 0,
-            needs_preview: true,
-            needs_pilot: true,
-            elapsed: Duration::ZERO,
-            rays: RayCounts::default(),
-            pixel_samples: 0,
-            converged: false,
-            partial: None,
+            view,
+            accumulation,
         });
+        self.restart();
+    }
+
+    /// An empty film for the current context, the preview first.
+    fn restart(&mut self) {
+        let Some(current) = &mut self.current else {
+            return;
+        };
+        current.context.continuations = preview_continuations(&current.context.settings);
+        current.accumulation = Accumulation::new(&current.context.settings);
+        *lock(&self.shared.film) = Some(Arc::clone(&current.accumulation.film));
+        self.restarts += 1;
     }
 
     /// One unit of work: the preview after a restart, else one full pass
@@ -453,49 +525,38 @@ impl Worker {
             return;
         };
         let start = Instant::now();
-        if current.needs_preview {
+        if current.accumulation.needs_preview {
             let preview = Self::render_preview(current, &mut self.buffer, &self.shared.cancel);
-            current.elapsed += start.elapsed();
-            current.needs_preview = false;
+            current.accumulation.elapsed += start.elapsed();
+            current.accumulation.needs_preview = false;
             if let Some(film) = preview {
                 self.publish(&film, true, false);
             }
             return;
         }
-        if current.needs_pilot {
-            choose_continuations(&mut current.context);
-            current.needs_pilot = false;
+        let (context, accumulation) = (&mut current.context, &mut current.accumulation);
+        if accumulation.needs_pilot {
+            choose_continuations(context);
+            accumulation.needs_pilot = false;
         }
-        let mut film = lock(&current.film);
-        let pass = match deadline {
-            None => render_pass_cancellable(
-                &current.context,
-                &mut film,
-                current.next_sample,
-                &mut self.buffer,
-                &self.shared.cancel,
-            ),
-            Some(deadline) => {
-                let context = &current.context;
-                let partial = current
-                    .partial
-                    .get_or_insert_with(|| PartialPass::new(context, &film, current.next_sample));
-                let pass =
-                    render_pass_until(context, &mut film, partial, &mut self.buffer, deadline);
-                if pass.is_some() {
-                    current.partial = None;
-                }
-                pass
-            }
+        let mut film = lock(&accumulation.film);
+        let pass = accumulation
+            .pass
+            .get_or_insert_with(|| Pass::new(context, &film, accumulation.next_sample));
+        let until = Until {
+            cancel: Some(&self.shared.cancel),
+            deadline,
         };
+        let counts = pass.render(context, &mut film, &mut self.buffer, &until);
         drop(film);
-        current.elapsed += start.elapsed();
-        if let Some(counts) = pass {
-            current.rays.add(&counts);
+        accumulation.elapsed += start.elapsed();
+        if let Some(counts) = counts {
+            accumulation.pass = None;
+            accumulation.rays.add(&counts);
             // one camera ray per sample traced (adaptive sampling traces fewer than the pixels)
-            current.pixel_samples += counts.camera;
-            current.converged = counts.camera == 0;
-            current.next_sample += 1;
+            accumulation.pixel_samples += counts.camera;
+            accumulation.converged = counts.camera == 0;
+            accumulation.next_sample += 1;
             self.publish_full();
         }
     }
@@ -506,22 +567,30 @@ impl Worker {
         buffer: &mut PassBuffer,
         cancel: &AtomicBool,
     ) -> Option<Film> {
-        let settings = &current.request.settings;
-        let (width, height) = (settings.width.div_ceil(4), settings.height.div_ceil(4));
+        let context = &mut current.context;
+        let (width, height) = (
+            context.settings.width.div_ceil(4),
+            context.settings.height.div_ceil(4),
+        );
         let full_camera = std::mem::replace(
-            &mut current.context.camera,
-            CameraRays::new(&current.request.camera, width, height),
+            &mut context.camera,
+            CameraRays::new(&current.view.camera, width, height),
         );
         let mut film = Film::new(width, height);
-        let counts = render_pass_cancellable(&current.context, &mut film, 0, buffer, cancel);
-        current.context.camera = full_camera;
-        current.rays.add(&counts?);
+        let counts = Pass::new(context, &film, 0).render(
+            context,
+            &mut film,
+            buffer,
+            &Until::cancelled_by(cancel),
+        );
+        context.camera = full_camera;
+        current.accumulation.rays.add(&counts?);
         Some(film)
     }
 
     fn publish_full(&mut self) {
         if let Some(current) = &self.current {
-            let film = Arc::clone(&current.film);
+            let film = Arc::clone(&current.accumulation.film);
             let film = lock(&film);
             let idle = current.is_idle(&film);
             self.publish(&film, false, idle);
@@ -532,7 +601,12 @@ impl Worker {
         let Some(current) = &self.current else {
             return;
         };
-        let terms = current.request.settings.terms;
+        let (settings, view, accumulation) = (
+            &current.context.settings,
+            &current.view,
+            &current.accumulation,
+        );
+        let terms = settings.terms;
         let rgba = |pixels: Vec<glam::Vec3>| -> Vec<[f32; 4]> {
             pixels
                 .into_iter()
@@ -540,8 +614,7 @@ impl Worker {
                 .collect()
         };
         let term_images = Term::ALL.map(|t| {
-            (current.request.term_images && terms.contains(t))
-                .then(|| rgba(film.radiance(TermSet::only(t))))
+            (view.term_images && terms.contains(t)).then(|| rgba(film.radiance(TermSet::only(t))))
         });
         self.generation += 1;
         let snapshot = Snapshot {
@@ -554,15 +627,15 @@ impl Worker {
             terms,
             term_images,
             term_samples: Term::ALL.map(|t| if preview { 0 } else { film.samples(t) }),
-            elapsed: current.elapsed,
-            rays: current.rays,
-            pixel_samples: current.pixel_samples,
+            elapsed: accumulation.elapsed,
+            rays: accumulation.rays,
+            pixel_samples: accumulation.pixel_samples,
             continuations: current.context.continuations.clone(),
             idle,
             source: Some(ImageSource {
-                scene: Arc::downgrade(&current.request.scene),
-                camera: current.request.camera.clone(),
-                settings: current.request.settings.clone(),
+                scene: Arc::downgrade(&view.scene),
+                camera: view.camera.clone(),
+                settings: settings.clone(),
             }),
         };
         *lock(&self.shared.snapshot) = Arc::new(snapshot);
