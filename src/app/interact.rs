@@ -10,7 +10,7 @@ use glam::{Affine3A, Quat, Vec2, Vec3};
 
 use super::LumiereApp;
 use super::probe_view::ImageMapping;
-use crate::course::LightMode;
+use crate::course::{LightMode, RenderSettings};
 use crate::geometry::accel::{Accel, Hit};
 use crate::geometry::camera::CameraRays;
 use crate::scene::{BrdfModel, Camera, Material, PunctualKind, Scene};
@@ -125,8 +125,8 @@ pub fn viewport_input(app: &mut LumiereApp, response: &egui::Response, mapping: 
     let rect = mapping.rect;
     let scene = Arc::clone(&app.scene);
     let shift = response.ctx.input(|i| i.modifiers.shift);
-    if shift && app.zoom.is_some() && response.dragged() {
-        app.pan += response.drag_delta();
+    if shift && app.zoom.scale.is_some() && response.dragged() {
+        app.zoom.pan += response.drag_delta();
     } else if response.dragged_by(egui::PointerButton::Primary) {
         app.camera = app.orbit.orbit(&app.camera, &scene, response.drag_delta());
     } else if response.dragged_by(egui::PointerButton::Secondary)
@@ -310,10 +310,15 @@ pub fn selection_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
 /// mode — a point light's intensity I (W/sr), a sphere light's or an
 /// emitter's radiance Lₑ (W/m²/sr), an emitter collapsed to a point's peak
 /// intensity — with its power Φ (W), which the modes keep.
-pub fn light_power_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
-    let scene = Arc::clone(&app.scene);
-    let mode = app.state.settings.light_mode;
-    let radius = crate::transport::lights::sphere_light_radius(&scene, &app.state.settings);
+pub fn light_power_ui(
+    ui: &mut egui::Ui,
+    settings: &RenderSettings,
+    edited: &mut Arc<Scene>,
+    areas: &mut EmitterAreas,
+) {
+    let scene = Arc::clone(edited);
+    let mode = settings.light_mode;
+    let radius = crate::transport::lights::sphere_light_radius(&scene, settings);
     let sphere_area = std::f32::consts::PI * radius * radius;
     for (i, light) in scene.lights.iter().enumerate() {
         let intensity = light.intensity.max_element();
@@ -346,7 +351,7 @@ pub fn light_power_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             }
         };
         if let Some(value) = strength_field(ui, value, &light.name, unit, power) {
-            let light = &mut Arc::make_mut(&mut app.scene).lights[i];
+            let light = &mut Arc::make_mut(edited).lights[i];
             let colour = light.intensity / light.intensity.max_element().max(1e-12);
             let colour = if colour == Vec3::ZERO {
                 Vec3::ONE
@@ -356,11 +361,7 @@ pub fn light_power_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             light.intensity = colour * (value / per_intensity);
         }
     }
-    let key = Arc::as_ptr(&scene) as usize;
-    if app.emitter_areas.0 != key {
-        app.emitter_areas = (key, emitter_areas(&scene));
-    }
-    let areas = app.emitter_areas.1.clone();
+    let areas = areas.of(&scene).to_vec();
     for (i, material) in scene
         .materials
         .iter()
@@ -379,10 +380,28 @@ pub fn light_power_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             (radiance, "Lₑ, W/m²/sr", 1.0)
         };
         if let Some(value) = strength_field(ui, value, &material.name, unit, power) {
-            let material = &mut Arc::make_mut(&mut app.scene).materials[i];
+            let material = &mut Arc::make_mut(edited).materials[i];
             let colour = material.emission / material.emission.max_element();
             material.emission = colour * (value / per_radiance).max(1e-6);
         }
+    }
+}
+
+/// The area of each material's triangles, kept for the scene it was
+/// found for (the light panel reads it every frame).
+#[derive(Default)]
+pub struct EmitterAreas {
+    /// The scene's address, and its areas by material.
+    found: Option<(usize, Vec<f32>)>,
+}
+
+impl EmitterAreas {
+    fn of(&mut self, scene: &Arc<Scene>) -> &[f32] {
+        let key = Arc::as_ptr(scene) as usize;
+        if self.found.as_ref().is_none_or(|(found, _)| *found != key) {
+            self.found = Some((key, emitter_areas(scene)));
+        }
+        self.found.as_ref().map_or(&[], |(_, areas)| areas)
     }
 }
 

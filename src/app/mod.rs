@@ -18,7 +18,9 @@ mod override_ui;
 mod panels;
 pub mod probe_view;
 pub mod reference;
+mod sampling_panel;
 mod scene_panel;
+mod script;
 mod shown;
 mod source_quality;
 pub mod split;
@@ -36,7 +38,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::analysis::metrics::ReferenceImage;
 use crate::analysis::noise::{DisplayMode, NoiseView};
-use crate::course::{RenderSettings, TermSet};
+use crate::course::RenderSettings;
 use crate::render::display::DisplaySettings;
 use crate::render::progressive::{ProgressiveRenderer, Snapshot, ViewRequest};
 use crate::scene::{Camera, Scene, builtin};
@@ -145,7 +147,35 @@ impl Default for Persisted {
 
 const STORAGE_KEY: &str = "lumiere";
 
-/// The viewer application.
+impl Persisted {
+    /// The settings a run starts with: the command line's, or, when asked
+    /// and valid, those the previous run saved in `storage`.
+    fn at_start(options: &ViewOptions, storage: Option<&dyn eframe::Storage>) -> Self {
+        let mut state = Persisted {
+            settings: options.settings.clone(),
+            display: options.display,
+            noise: NoiseView {
+                mode: options.display_mode,
+                ..NoiseView::default()
+            },
+            ..Persisted::default()
+        };
+        if options.restore
+            && let Some(saved) =
+                storage.and_then(|s| eframe::get_value::<Persisted>(s, STORAGE_KEY))
+            && saved.settings.validate().is_ok()
+        {
+            state = saved;
+        }
+        if let Some(size) = options.shown_size {
+            state.shown_size = size;
+        }
+        state
+    }
+}
+
+/// The viewer application. Its `pub` fields are the state the viewer's
+/// tests read and set through the egui harness; the rest is its own.
 pub struct LumiereApp {
     pub state: Persisted,
     pub scene_spec: String,
@@ -159,18 +189,8 @@ pub struct LumiereApp {
     scene_field: String,
     /// The last problem or event to show in the status bar.
     pub message: Option<String>,
-    exit_after_spp: Option<u32>,
-    screenshot: Option<PathBuf>,
-    /// `--save-as-shown`: the picture to write before exiting.
-    script_shown: shown::ScriptShown,
-    /// What went wrong in a scripted run (the run then fails).
-    script_failure: Arc<Mutex<Option<String>>>,
-    /// Set by the screenshot callback: the outcome of saving the window.
-    window_shot: Arc<Mutex<Option<Result<PathBuf, String>>>>,
-    window_shot_requested: bool,
-    /// The image (worker, restart, terms) a scripted page last reported.
-    #[cfg_attr(not(target_arch = "wasm32"), allow(dead_code))]
-    reported_film: Option<(u64, u64, TermSet)>,
+    /// What a scripted run asked for, and the bench.
+    script: script::ScriptedRun,
     /// Where the image was drawn last frame (points).
     image_rect: Option<egui::Rect>,
     orbit: interact::Orbit,
@@ -178,13 +198,10 @@ pub struct LumiereApp {
     pub selected: Option<u32>,
     /// A BVH over every triangle of the scene it was built for, to pick objects.
     picking: Option<(Arc<Scene>, crate::geometry::accel::Accel)>,
-    bench: Option<bench::Bench>,
     /// Save the settings for the next run (only the plain `lumiere` viewer does).
     persist: bool,
-    /// Screen pixels per film pixel; `None` fits the image to the window.
-    pub zoom: Option<u32>,
-    /// Offset of the zoomed image from the centre, in points.
-    pub pan: egui::Vec2,
+    /// The image's zoom and pan.
+    zoom: viewport::Zoom,
     exports: Vec<crate::platform::threads::Job<Result<files::Saved, String>>>,
     /// Scene files dropped on the window (read in the background in the browser).
     dropped: files::Dropped,
@@ -210,8 +227,8 @@ pub struct LumiereApp {
     pub probe_tool: bool,
     /// The lesson open, if any, and its step.
     pub lesson: lesson_view::LessonState,
-    /// The emitting area of each material, for the scene at this address.
-    emitter_areas: (usize, Vec<f32>),
+    /// The emitting area of each material, for the light panel.
+    emitter_areas: interact::EmitterAreas,
     /// The scene library's thumbnails, rendered the first time it is shown.
     pub thumbnails: thumbnails::Thumbnails,
 }
@@ -231,26 +248,7 @@ fn keep_sources_of(settings: &mut crate::course::RenderSettings, scene: &Scene) 
 impl LumiereApp {
     /// Creates the app: loads the scene, installs the GPU blit, starts the worker.
     pub fn new(cc: &eframe::CreationContext<'_>, options: ViewOptions) -> Result<Self, String> {
-        let mut state = Persisted {
-            settings: options.settings.clone(),
-            display: options.display,
-            noise: NoiseView {
-                mode: options.display_mode,
-                ..NoiseView::default()
-            },
-            ..Persisted::default()
-        };
-        if options.restore
-            && let Some(saved) = cc
-                .storage
-                .and_then(|s| eframe::get_value::<Persisted>(s, STORAGE_KEY))
-            && saved.settings.validate().is_ok()
-        {
-            state = saved;
-        }
-        if let Some(size) = options.shown_size {
-            state.shown_size = size;
-        }
+        let mut state = Persisted::at_start(&options, cc.storage);
         if let Some(render_state) = &cc.wgpu_render_state {
             display::install(render_state);
         }
@@ -260,52 +258,37 @@ impl LumiereApp {
             .map_err(|e| format!("{}: {e}", options.scene))?;
         keep_sources_of(&mut state.settings, &scene);
         let camera = scene.default_camera();
-        let ctx = cc.egui_ctx.clone();
+        let script = script::ScriptedRun::new(&options);
         let request = ViewRequest {
             scene: Arc::clone(&scene).into(),
             settings: state.settings.clone(),
             camera: camera.clone(),
             paused: false,
-            stop_at_spp: options.exit_after_spp.or(state.stop_at_spp),
+            stop_at_spp: script.exit_after_spp.or(state.stop_at_spp),
             // the first frame asks for them if the four-up is shown
             term_images: false,
             film: 0,
         };
-        waker::install(&ctx);
-        let waker = waker::Waker::new(&ctx);
+        waker::install(&cc.egui_ctx);
+        let waker = waker::Waker::new(&cc.egui_ctx);
         let renderer = ProgressiveRenderer::spawn(request.clone(), move || waker.wake());
-        let mut probe = probe_view::ProbeState::default();
-        probe.path.sample = options.probe_sample;
-        if let Some((x, y)) = options.probe {
-            probe.pick(x, y);
-        }
         let mut app = Self {
             message: scene.warnings.first().map(|w| format!("warning: {w}")),
             state,
             scene_field: options.scene.clone(),
-            scene_spec: options.scene,
+            scene_spec: options.scene.clone(),
             scene,
             camera,
             paused: false,
             renderer,
             sent: request,
-            exit_after_spp: options.exit_after_spp,
-            screenshot: options.screenshot,
-            script_shown: options
-                .save_as_shown
-                .map_or(shown::ScriptShown::Done, shown::ScriptShown::Pending),
-            script_failure: Arc::default(),
-            window_shot: Arc::default(),
-            window_shot_requested: false,
-            reported_film: None,
+            script,
             image_rect: None,
             orbit: interact::Orbit::default(),
             selected: None,
             picking: None,
-            bench: options.bench.then(bench::Bench::default),
             persist: options.restore,
-            zoom: None,
-            pan: egui::Vec2::ZERO,
+            zoom: viewport::Zoom::default(),
             exports: Vec::new(),
             dropped: files::Dropped::default(),
             open_file_requested: false,
@@ -317,29 +300,38 @@ impl LumiereApp {
             renderer_serial: 1,
             spawned: 1,
             noise_view: noise_view::NoiseViewState::default(),
-            probe,
+            probe: probe_view::ProbeState::default(),
             probe_tool: false,
-            lesson: lesson_view::LessonState {
-                lang: options.lang,
-                presenting: options.present,
-                ..Default::default()
-            },
-            emitter_areas: (0, Vec::new()),
+            lesson: lesson_view::LessonState::default(),
+            emitter_areas: interact::EmitterAreas::default(),
             thumbnails: thumbnails::Thumbnails::default(),
         };
-        if let Some(lesson) = options.lesson {
-            lesson_view::open(&mut app, lesson, options.step);
+        app.open_as_asked(options)?;
+        Ok(app)
+    }
+
+    /// What the command line asks the viewer to show first: a probed pixel,
+    /// a lesson step, the convergence plot, B, a reference.
+    fn open_as_asked(&mut self, options: ViewOptions) -> Result<(), String> {
+        self.probe.path.sample = options.probe_sample;
+        if let Some((x, y)) = options.probe {
+            self.probe.pick(x, y);
         }
-        app.errors.show_plot = options.convergence_plot;
+        self.lesson.lang = options.lang;
+        self.lesson.presenting = options.present;
+        if let Some(lesson) = options.lesson {
+            lesson_view::open(self, lesson, options.step);
+        }
+        self.errors.show_plot = options.convergence_plot;
         if let Some(b) = options.compare {
             // B and the one-thread A start with the first frame (split::sync)
-            app.compare.enabled = true;
-            app.compare.b = b;
+            self.compare.enabled = true;
+            self.compare.b = b;
         }
         if let Some(path) = &options.reference {
-            reference::load_reference_exr(&mut app, &path.to_string_lossy())?;
+            reference::load_reference_exr(self, &path.to_string_lossy())?;
         }
-        Ok(app)
+        Ok(())
     }
 
     /// A number for the next worker spawned, to tell their snapshots apart.
@@ -369,7 +361,7 @@ impl LumiereApp {
             camera: self.camera.clone(),
             // a reference capture gets the cores to itself
             paused: self.paused || self.errors.capturing(),
-            stop_at_spp: self.exit_after_spp.or(self.state.stop_at_spp),
+            stop_at_spp: self.script.exit_after_spp.or(self.state.stop_at_spp),
             term_images: four_up_view::active(self),
             film: self.lesson.opened,
         }
@@ -466,132 +458,6 @@ impl LumiereApp {
         self.message = Some("every setting is back to its default".into());
     }
 
-    /// Scripted runs: once the image has enough samples, save the window and quit.
-    fn script_exit(&mut self, ctx: &egui::Context, snapshot: &Snapshot) {
-        let Some(target) = self.exit_after_spp else {
-            return;
-        };
-        // an idle worker short of the target has nothing left to do (adaptive
-        // sampling has stopped every pixel): the run ends there
-        let short = snapshot.samples_per_pixel() < target && !snapshot.idle;
-        // the image of the scene shown now, not of one just replaced
-        let current = snapshot
-            .source
-            .as_ref()
-            .is_some_and(|s| s.scene.ptr_eq(&Arc::downgrade(&self.scene)));
-        if snapshot.preview || short || !current || !split::settled(self) {
-            return;
-        }
-        // the noise view and the probe catch up with the last pass first
-        if !self
-            .noise_view
-            .is_current(self.state.noise, snapshot.generation)
-            || !self.probe.is_settled(snapshot.samples_per_pixel())
-        {
-            ctx.request_repaint_after(std::time::Duration::from_millis(20));
-            return;
-        }
-        if !shown::script_step(self, ctx) {
-            return;
-        }
-        let Some(path) = self.screenshot.clone() else {
-            // a page cannot close itself: it says so on its console, once
-            // for each film and terms shown
-            #[cfg(target_arch = "wasm32")]
-            if self.reported_film != Some((self.renderer_serial, snapshot.restarts, snapshot.terms))
-            {
-                self.reported_film =
-                    Some((self.renderer_serial, snapshot.restarts, snapshot.terms));
-                web::report_reached(
-                    snapshot,
-                    self.image_rect.map(|r| r * ctx.pixels_per_point()),
-                );
-            }
-            #[cfg(not(target_arch = "wasm32"))]
-            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
-            return;
-        };
-        if !self.window_shot_requested {
-            self.window_shot_requested = true;
-            let outcome = Arc::clone(&self.window_shot);
-            let repaint = ctx.clone();
-            ctx.request_screenshot(move |image| {
-                *outcome.lock().unwrap_or_else(|p| p.into_inner()) =
-                    Some(export::save_window(&path, &image).map(|()| path.clone()));
-                repaint.request_repaint();
-            });
-            return;
-        }
-        let done = self
-            .window_shot
-            .lock()
-            .unwrap_or_else(|p| p.into_inner())
-            .take();
-        if let Some(outcome) = done {
-            match outcome {
-                Ok(path) => {
-                    eprintln!("saved {}", path.display());
-                    if let Some(rect) = self.image_rect {
-                        // in screenshot pixels, for scripts that crop the image out
-                        let r = rect * ctx.pixels_per_point();
-                        eprintln!(
-                            "image at {:.0} {:.0} size {:.0} {:.0}",
-                            r.min.x,
-                            r.min.y,
-                            r.width(),
-                            r.height()
-                        );
-                    }
-                }
-                Err(e) => self.script_failed(e),
-            }
-            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
-        } else {
-            ctx.request_repaint();
-        }
-    }
-
-    /// A scripted run's file could not be written: the run fails with `problem`
-    /// (the first, if several).
-    fn script_failed(&mut self, problem: String) {
-        let mut failure = self
-            .script_failure
-            .lock()
-            .unwrap_or_else(|p| p.into_inner());
-        failure.get_or_insert(problem);
-    }
-
-    /// `--bench`: records this frame and toggles the BRDF when it is time.
-    fn bench_step(
-        &mut self,
-        ctx: &egui::Context,
-        snapshot: &Snapshot,
-        started: crate::platform::time::Instant,
-    ) {
-        let Some(bench) = &mut self.bench else {
-            return;
-        };
-        if !snapshot.idle {
-            bench.frame_built(started.elapsed());
-        }
-        match bench.step(snapshot, self.state.settings.brdf) {
-            bench::BenchStep::Wait => ctx.request_repaint(),
-            bench::BenchStep::Toggle(brdf) => {
-                self.state.settings.brdf = brdf;
-                self.sync_renderer();
-                if let Some(bench) = &mut self.bench {
-                    bench.posted(snapshot.generation);
-                }
-                ctx.request_repaint();
-            }
-            bench::BenchStep::Finished(report) => {
-                println!("{report}");
-                self.bench = None;
-                ctx.send_viewport_cmd(egui::ViewportCommand::Close);
-            }
-        }
-    }
-
     /// Saves the image as displayed (PNG), its radiance (EXR), optionally one
     /// EXR per term, and the JSON sidecar, on a background thread.
     pub fn save_screenshot(&mut self) {
@@ -666,7 +532,7 @@ impl LumiereApp {
 impl eframe::App for LumiereApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         let started = crate::platform::time::Instant::now();
-        if let Some(bench) = &mut self.bench {
+        if let Some(bench) = &mut self.script.bench {
             bench.frame_started(started);
         }
         let ctx = ui.ctx().clone();
@@ -703,11 +569,11 @@ impl eframe::App for LumiereApp {
         self.image_rect = Some(image_rect);
         convergence::plot_window(self, &ctx);
         probe_view::probe_window(&ctx, &mut self.probe);
-        self.bench_step(&ctx, &snapshot, started);
+        script::bench_step(self, &ctx, &snapshot, started);
         self.sync_renderer();
         split::sync(self, &ctx);
         self.render_between_frames(&ctx);
-        self.script_exit(&ctx, &snapshot);
+        script::exit_when_done(self, &ctx, &snapshot);
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
@@ -772,7 +638,7 @@ pub fn run(options: ViewOptions) -> Result<(), String> {
         native_options,
         Box::new(move |cc| match LumiereApp::new(cc, options) {
             Ok(mut app) => {
-                app.script_failure = Arc::clone(&failure_in_app);
+                app.script.failure = Arc::clone(&failure_in_app);
                 Ok(Box::new(app))
             }
             Err(e) => {

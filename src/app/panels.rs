@@ -1,20 +1,22 @@
 //! The viewer's widgets: side panel groups, status bar, shortcuts.
-//! Each function edits the app's plain state; `LumiereApp::sync_renderer`
-//! then tells the worker what changed.
+//! Each group edits the plain state it is given (the settings, the display
+//! settings, the camera); `side_panel` hands each its part of the app, and
+//! `LumiereApp::sync_renderer` then tells the worker what changed. The
+//! groups that open a lesson, load a scene or start B take the app: they
+//! change most of it.
 
 use eframe::egui;
 use strum::IntoEnumIterator;
 
 use super::noise_view;
-use super::{LumiereApp, interact, reference, split};
+use super::{LumiereApp, Persisted, interact, reference, split};
 use crate::analysis::noise::{DisplayMode, NoiseSource, Scale};
 use crate::course::Choice;
-use crate::course::{
-    Adaptive, BrdfOverride, IndirectSampling, Integrator, LightMode, LightSampling, LightSelection,
-    MAX_IOR, MAX_SAMPLES_PER_VERTEX, MisHeuristic, RenderSettings, Sampler, Term,
-};
-use crate::render::display::Tonemap;
+use crate::course::{BrdfOverride, LightMode, MAX_IOR, RenderSettings, Term, TermSet};
+use crate::render::display::{DisplaySettings, Tonemap};
 use crate::render::progressive::Snapshot;
+use crate::scene::{Camera, Scene};
+use std::sync::Arc;
 
 /// French name and formula of each term, shown on hover (from the course).
 fn term_tooltip(term: Term) -> &'static str {
@@ -56,7 +58,7 @@ pub fn shortcuts(app: &mut LumiereApp, ctx: &egui::Context) {
         (egui::Key::Num3, Term::L3Plus),
     ] {
         if pressed(key) {
-            toggle_term(app, term);
+            toggle_term(&mut app.state.settings.terms, term);
         }
     }
     let settings = &mut app.state.settings;
@@ -94,11 +96,10 @@ fn next<T: Copy + PartialEq>(all: &[T], current: T) -> T {
 }
 
 /// Switches `term` on or off, keeping at least one term on.
-fn toggle_term(app: &mut LumiereApp, term: Term) {
-    let terms = app.state.settings.terms;
+fn toggle_term(terms: &mut TermSet, term: Term) {
     let toggled = terms.with(term, !terms.contains(term));
     if !toggled.is_empty() {
-        app.state.settings.terms = toggled;
+        *terms = toggled;
     }
 }
 
@@ -175,14 +176,24 @@ pub fn side_panel(app: &mut LumiereApp, ui: &mut egui::Ui) {
         .show(ui, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
                 super::lesson_view::lesson_ui(app, ui);
-                terms_ui(app, ui);
-                lights_ui(app, ui);
-                materials_ui(app, ui);
-                sampling_ui(app, ui);
+                terms_ui(ui, &mut app.state.settings.terms);
+                lights_ui(
+                    ui,
+                    &mut app.state.settings,
+                    &mut app.scene,
+                    &mut app.emitter_areas,
+                );
+                materials_ui(ui, &mut app.state.settings);
+                super::sampling_panel::sampling_ui(ui, &mut app.state.settings);
                 interact::selection_ui(app, ui);
-                camera_ui(app, ui);
+                camera_ui(ui, &app.scene, &mut app.camera, &mut app.orbit);
                 display_ui(app, ui);
-                render_ui(app, ui);
+                match render_ui(ui, &mut app.state, &mut app.paused) {
+                    Some(RenderAction::SaveScreenshot) => app.save_screenshot(),
+                    Some(RenderAction::SaveAsShown) => app.save_as_shown(),
+                    Some(RenderAction::ResetToDefaults) => app.reset_to_defaults(),
+                    None => {}
+                }
                 super::scene_panel::scene_ui(app, ui);
                 reference::error_ui(app, ui);
                 split::compare_ui(app, ui);
@@ -190,12 +201,13 @@ pub fn side_panel(app: &mut LumiereApp, ui: &mut egui::Ui) {
         });
 }
 
-fn terms_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+/// The terms' checkboxes.
+fn terms_ui(ui: &mut egui::Ui, terms: &mut TermSet) {
     egui::CollapsingHeader::new("Terms")
         .default_open(true)
         .show(ui, |ui| {
             for term in Term::ALL {
-                let mut on = app.state.settings.terms.contains(term);
+                let mut on = terms.contains(term);
                 ui.horizontal(|ui| {
                     let response = ui
                         .checkbox(&mut on, term.label())
@@ -203,16 +215,22 @@ fn terms_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                     ui.label(egui::RichText::new(term.description()).weak().small())
                         .on_hover_text(term_tooltip(term));
                     if response.changed() {
-                        toggle_term(app, term);
+                        toggle_term(terms, term);
                     }
                 });
             }
         });
 }
 
-fn lights_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+/// The light mode, the spheres' radius, each light's power (which edits
+/// `scene`) and each source's quality.
+fn lights_ui(
+    ui: &mut egui::Ui,
+    settings: &mut RenderSettings,
+    scene: &mut Arc<Scene>,
+    emitter_areas: &mut interact::EmitterAreas,
+) {
     egui::CollapsingHeader::new("Lights").default_open(true).show(ui, |ui| {
-        let settings = &mut app.state.settings;
         for (mode, text, hint) in [
             (LightMode::Authored, "As authored", "The scene's own lights"),
             (
@@ -228,7 +246,7 @@ fn lights_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
         ] {
             ui.radio_value(&mut settings.light_mode, mode, text).on_hover_text(hint);
         }
-        let diagonal = app.scene.bounds().diagonal().max(1e-3);
+        let diagonal = scene.bounds().diagonal().max(1e-3);
         let mut radius = settings.light_radius.unwrap_or(0.02 * diagonal);
         let slider = egui::Slider::new(&mut radius, (1e-3 * diagonal)..=(0.25 * diagonal))
             .logarithmic(true)
@@ -242,16 +260,16 @@ fn lights_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             settings.light_radius = Some(radius);
         }
         ui.label(egui::RichText::new("power of each light").weak().small());
-        interact::light_power_ui(app, ui);
-        super::source_quality::source_quality_ui(app, ui);
+        interact::light_power_ui(ui, settings, scene, emitter_areas);
+        super::source_quality::source_quality_ui(ui, settings, scene);
     });
 }
 
-fn materials_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+/// Every material's model (the BRDF override), Phong's exponent, glass's η.
+fn materials_ui(ui: &mut egui::Ui, settings: &mut RenderSettings) {
     egui::CollapsingHeader::new("Materials")
         .default_open(true)
         .show(ui, |ui| {
-            let settings = &mut app.state.settings;
             egui::ComboBox::from_label("BRDF")
                 .selected_text(brdf_text(settings.brdf))
                 .show_ui(ui, |ui| {
@@ -278,225 +296,6 @@ fn materials_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
         });
 }
 
-/// The estimators: how direct lighting, the next reflection and the random
-/// numbers are drawn. Every choice is unbiased; only the noise differs.
-fn sampling_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
-    egui::CollapsingHeader::new("Sampling")
-        .default_open(true)
-        .show(ui, |ui| {
-            let settings = &mut app.state.settings;
-            combo(ui, "integrator", &mut settings.integrator, integrator_hint);
-            // the strategies below are the fast integrator's
-            let fast = settings.integrator == Integrator::Fast;
-            ui.add_enabled_ui(fast, |ui| strategies_ui(ui, settings));
-            combo(ui, "sampler", &mut settings.sampler, sampler_hint);
-            estimator_presets_ui(ui, settings);
-            adaptive_ui(ui, &mut settings.adaptive);
-        });
-}
-
-/// The two estimators a lecturer switches between: the default, the
-/// fastest measured, and plain Monte Carlo, whose noise the lessons teach.
-fn estimator_presets_ui(ui: &mut egui::Ui, settings: &mut RenderSettings) {
-    ui.horizontal(|ui| {
-        let fastest = RenderSettings::default();
-        if ui
-            .button("fastest (default)")
-            .on_hover_text(
-                "Sobol points and the pilot's continuations per first hit: \
-                 the fastest to a given error that lumiere measured",
-            )
-            .clicked()
-        {
-            settings.sampler = fastest.sampler;
-            settings.auto_indirect_samples = fastest.auto_indirect_samples;
-        }
-        if ui
-            .button("plain Monte Carlo")
-            .on_hover_text(
-                "Independent numbers and one continuation per first hit: \
-                 the noise of the course, falling as 1/√N",
-            )
-            .clicked()
-        {
-            settings.sampler = Sampler::Independent;
-            settings.indirect_samples = 1;
-            settings.auto_indirect_samples = false;
-        }
-    });
-}
-
-/// The fast integrator's estimators: direct and indirect strategies, MIS
-/// weights, samples per vertex, splitting and light selection.
-fn strategies_ui(ui: &mut egui::Ui, settings: &mut RenderSettings) {
-    combo(
-        ui,
-        "direct (L1)",
-        &mut settings.light_sampling,
-        light_sampling_hint,
-    );
-    ui.add_enabled_ui(settings.light_sampling == LightSampling::Mis, |ui| {
-        ui.horizontal(|ui| {
-            ui.label("MIS weights");
-            for heuristic in MisHeuristic::iter() {
-                ui.radio_value(&mut settings.mis_heuristic, heuristic, heuristic.label())
-                    .on_hover_text(match heuristic {
-                        MisHeuristic::Balance => "w = p_light / (p_light + p_brdf)",
-                        MisHeuristic::Power => "w = p_light² / (p_light² + p_brdf²)",
-                    });
-            }
-        });
-    });
-    combo(
-        ui,
-        "indirect (L2, L3+)",
-        &mut settings.indirect_sampling,
-        indirect_sampling_hint,
-    );
-    ui.horizontal(|ui| {
-        ui.add(
-            egui::DragValue::new(&mut settings.light_samples)
-                .range(1..=MAX_SAMPLES_PER_VERTEX)
-                .prefix("light samples "),
-        )
-        .on_hover_text(
-            "Light samples per vertex (shadow rays, or gathered directions), each weighted 1/N",
-        );
-        ui.add_enabled(
-            !settings.auto_indirect_samples,
-            egui::DragValue::new(&mut settings.indirect_samples)
-                .range(1..=MAX_SAMPLES_PER_VERTEX)
-                .prefix("indirect samples "),
-        )
-        .on_hover_text("Continuations per first hit (splitting), each weighted 1/M");
-        ui.checkbox(&mut settings.auto_indirect_samples, "auto")
-            .on_hover_text(
-                "Let a short pilot choose the continuations per first hit that \
-                         reach a given relative error soonest (more when the indirect \
-                         light is the noisier part)",
-            );
-    });
-    ui.horizontal(|ui| {
-        ui.label("pick lights");
-        for selection in LightSelection::iter() {
-            ui.radio_value(&mut settings.light_selection, selection, selection.label())
-                .on_hover_text(match selection {
-                    LightSelection::Uniform => "Every light with the same probability",
-                    LightSelection::Power => "In proportion to emitted power",
-                });
-        }
-    });
-}
-
-fn integrator_hint(integrator: Integrator) -> &'static str {
-    match integrator {
-        Integrator::Lecture => {
-            "The lecture's estimator (transport/lecture.rs): L0 + L1 + L2 + L3+ as the slides \
-             write them, one light sample and one BRDF direction per point; the strategies \
-             below do not apply. The path view still draws the fast integrator's paths."
-        }
-        Integrator::Fast => {
-            "The fast path tracer (transport/fast.rs): the strategies below, MIS, splitting \
-             and skipped work; it agrees with the lecture's estimator in the mean"
-        }
-    }
-}
-
-/// Adaptive sampling: a checkbox, then the threshold (in percent) and the
-/// samples every pixel gets first.
-fn adaptive_ui(ui: &mut egui::Ui, adaptive: &mut Option<Adaptive>) {
-    ui.horizontal(|ui| {
-        let mut on = adaptive.is_some();
-        ui.checkbox(&mut on, "adaptive").on_hover_text(
-            "Stop sampling a pixel's term once its standard error falls below a fraction \
-             of the pixel's value. Leave it off to compare noise: every pixel then gets \
-             the same samples.",
-        );
-        if on != adaptive.is_some() {
-            *adaptive = on.then(Adaptive::default);
-        }
-        if let Some(adaptive) = adaptive {
-            let mut percent = adaptive.threshold * 100.0;
-            let threshold = ui
-                .add(
-                    egui::DragValue::new(&mut percent)
-                        .range(0.01..=100.0)
-                        .speed(0.05)
-                        .suffix(" %"),
-                )
-                .on_hover_text("Standard error at which a pixel's term stops, relative to the pixel's luminance");
-            if threshold.changed() {
-                adaptive.threshold = percent / 100.0;
-            }
-            ui.add(
-                egui::DragValue::new(&mut adaptive.min_samples)
-                    .range(Adaptive::MIN_SAMPLES..=65536)
-                    .prefix("min spp "),
-            )
-            .on_hover_text("Samples every pixel gets before its error is judged");
-        }
-    });
-}
-
-/// A combo box over a closed set, with a hint per value.
-fn combo<T: Choice + PartialEq>(
-    ui: &mut egui::Ui,
-    label: &str,
-    value: &mut T,
-    hint: fn(T) -> &'static str,
-) {
-    egui::ComboBox::from_label(label)
-        .selected_text(value.label())
-        .show_ui(ui, |ui| {
-            for v in T::iter() {
-                ui.selectable_value(value, v, v.label())
-                    .on_hover_text(hint(v));
-            }
-        })
-        .response
-        .on_hover_text(hint(*value));
-}
-
-fn light_sampling_hint(strategy: LightSampling) -> &'static str {
-    match strategy {
-        LightSampling::Area => {
-            "Uniform points on the light: pdf = d² / (A cos θ_light) in solid angle.\nNoisy near large lights, where d² is small."
-        }
-        LightSampling::SolidAngle => {
-            "Uniform directions in the solid angle the light subtends (spherical triangles): pdf = 1/Ω.\nArea sampling for tiny or huge angles."
-        }
-        LightSampling::Brdf => {
-            "Sample the BRDF and count the directions that hit a light: pdf ∝ f cos θ.\nGood for glossy surfaces and large lights; blind to point lights."
-        }
-        LightSampling::Hemisphere => {
-            "Uniform directions on the hemisphere, pdf = 1/2π: only those that happen to see the source count.\nThe noisiest."
-        }
-        LightSampling::Mis => {
-            "Light and BRDF samples, each weighted by multiple importance sampling: robust everywhere."
-        }
-    }
-}
-
-fn indirect_sampling_hint(strategy: IndirectSampling) -> &'static str {
-    match strategy {
-        IndirectSampling::Uniform => "pdf = 1/2π over the hemisphere",
-        IndirectSampling::Cosine => "pdf = cos θ / π: exact for Lambert's f cos θ",
-        IndirectSampling::Brdf => {
-            "The BRDF's own sampling (cosine for Lambert, the lobe for Phong, the mirror direction)"
-        }
-    }
-}
-
-fn sampler_hint(sampler: Sampler) -> &'static str {
-    match sampler {
-        Sampler::Independent => "Independent uniform numbers: error falls as 1/√N",
-        Sampler::Stratified => "Jittered strata over blocks of 16 samples",
-        Sampler::Sobol => {
-            "Owen-scrambled Sobol points (the default): lower error for smooth integrands"
-        }
-    }
-}
-
 fn brdf_text(brdf: BrdfOverride) -> &'static str {
     match brdf {
         BrdfOverride::Authored => "As authored",
@@ -507,18 +306,18 @@ fn brdf_text(brdf: BrdfOverride) -> &'static str {
     }
 }
 
-fn camera_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+/// The scene's cameras, and back to its first (a new camera forgets the orbit).
+fn camera_ui(ui: &mut egui::Ui, scene: &Scene, camera: &mut Camera, orbit: &mut interact::Orbit) {
     egui::CollapsingHeader::new("Camera")
         .default_open(false)
         .show(ui, |ui| {
-            let cameras = app.scene.cameras.clone();
             egui::ComboBox::from_label("view")
-                .selected_text(app.camera.name.clone())
+                .selected_text(camera.name.clone())
                 .show_ui(ui, |ui| {
-                    for camera in cameras {
-                        let name = camera.name.clone();
-                        if ui.selectable_value(&mut app.camera, camera, name).clicked() {
-                            app.orbit = interact::Orbit::default();
+                    for choice in &scene.cameras {
+                        let name = choice.name.clone();
+                        if ui.selectable_value(camera, choice.clone(), name).clicked() {
+                            *orbit = interact::Orbit::default();
                         }
                     }
                 });
@@ -527,8 +326,8 @@ fn camera_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 .on_hover_text("Back to the scene's first camera")
                 .clicked()
             {
-                app.camera = app.scene.default_camera();
-                app.orbit = interact::Orbit::default();
+                *camera = scene.default_camera();
+                *orbit = interact::Orbit::default();
             }
             ui.label(
                 egui::RichText::new(
@@ -540,46 +339,34 @@ fn camera_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
         });
 }
 
+/// The zoom, the exposure and tonemap, the noise views and the probe, the layout.
 fn display_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
     egui::CollapsingHeader::new("Display")
         .default_open(true)
         .show(ui, |ui| {
-            ui.horizontal(|ui| {
-                ui.label("zoom");
-                for (zoom, text) in [
-                    (None, "Fit"),
-                    (Some(1), "1:1"),
-                    (Some(2), "2×"),
-                    (Some(4), "4×"),
-                    (Some(8), "8×"),
-                ] {
-                    if ui.selectable_label(app.zoom == zoom, text).clicked() {
-                        app.zoom = zoom;
-                        app.pan = egui::Vec2::ZERO;
-                    }
-                }
-            })
-            .response
-            .on_hover_text("Screen pixels per film pixel (nearest neighbour); Shift+drag pans");
-            let auto = app.state.auto_exposure;
-            let display = &mut app.state.display;
-            ui.horizontal(|ui| {
-                ui.add_enabled(
-                    !auto,
-                    egui::Slider::new(&mut display.exposure, -10.0..=10.0).text("exposure (EV)"),
-                );
-                ui.checkbox(&mut app.state.auto_exposure, "auto EV")
-                    .on_hover_text("Set the exposure from the image: its mean luminance shown as mid-grey (L2 alone is dark)");
-            });
-            egui::ComboBox::from_label("tonemap")
-                .selected_text(display.tonemap.label())
-                .show_ui(ui, |ui| {
-                    for tonemap in Tonemap::iter() {
-                        ui.selectable_value(&mut display.tonemap, tonemap, tonemap.label());
-                    }
-                });
+            app.zoom.ui(ui);
+            exposure_ui(ui, &mut app.state.display, &mut app.state.auto_exposure);
             noise_ui(app, ui);
             super::four_up_view::layout_ui(app, ui);
+        });
+}
+
+/// The exposure, by hand or from the image, and the tonemap.
+fn exposure_ui(ui: &mut egui::Ui, display: &mut DisplaySettings, auto_exposure: &mut bool) {
+    ui.horizontal(|ui| {
+        ui.add_enabled(
+            !*auto_exposure,
+            egui::Slider::new(&mut display.exposure, -10.0..=10.0).text("exposure (EV)"),
+        );
+        ui.checkbox(auto_exposure, "auto EV")
+            .on_hover_text("Set the exposure from the image: its mean luminance shown as mid-grey (L2 alone is dark)");
+    });
+    egui::ComboBox::from_label("tonemap")
+        .selected_text(display.tonemap.label())
+        .show_ui(ui, |ui| {
+            for tonemap in Tonemap::iter() {
+                ui.selectable_value(&mut display.tonemap, tonemap, tonemap.label());
+            }
         });
 }
 
@@ -639,24 +426,36 @@ fn noise_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
     }
 }
 
-fn render_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+/// What a button of the Render group asks the app to do.
+enum RenderAction {
+    SaveScreenshot,
+    SaveAsShown,
+    ResetToDefaults,
+}
+
+/// Pause, the exports, the stop, the film's size, bounces and seed, where
+/// files go; a button's action for the app.
+fn render_ui(ui: &mut egui::Ui, state: &mut Persisted, paused: &mut bool) -> Option<RenderAction> {
+    let mut action = None;
     egui::CollapsingHeader::new("Render")
         .default_open(true)
         .show(ui, |ui| {
             ui.horizontal(|ui| {
-                let text = if app.paused { "Resume" } else { "Pause" };
+                let text = if *paused { "Resume" } else { "Pause" };
                 if ui.button(text).on_hover_text("Space").clicked() {
-                    app.paused = !app.paused;
+                    *paused = !*paused;
                 }
                 if ui
                     .button("Save screenshot")
                     .on_hover_text("Ctrl+S: PNG as displayed, EXR, settings")
                     .clicked()
                 {
-                    app.save_screenshot();
+                    action = Some(RenderAction::SaveScreenshot);
                 }
             });
-            shown_size_ui(app, ui);
+            if shown_size_ui(ui, &mut state.shown_size) {
+                action = Some(RenderAction::SaveAsShown);
+            }
             if ui
                 .button("Reset to defaults")
                 .on_hover_text(
@@ -665,12 +464,12 @@ fn render_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                 )
                 .clicked()
             {
-                app.reset_to_defaults();
+                action = Some(RenderAction::ResetToDefaults);
             }
             ui.horizontal(|ui| {
-                let mut stop = app.state.stop_at_spp.is_some();
+                let mut stop = state.stop_at_spp.is_some();
                 let label = ui.checkbox(&mut stop, "stop at");
-                let mut spp = app.state.stop_at_spp.unwrap_or(256);
+                let mut spp = state.stop_at_spp.unwrap_or(256);
                 ui.add_enabled(
                     stop,
                     egui::DragValue::new(&mut spp)
@@ -678,9 +477,9 @@ fn render_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                         .suffix(" spp"),
                 )
                 .labelled_by(label.id);
-                app.state.stop_at_spp = stop.then_some(spp);
+                state.stop_at_spp = stop.then_some(spp);
             });
-            let settings = &mut app.state.settings;
+            let settings = &mut state.settings;
             ui.horizontal(|ui| {
                 let width = ui.label("width");
                 ui.add(egui::DragValue::new(&mut settings.width).range(16..=4096))
@@ -695,40 +494,101 @@ fn render_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                     .prefix("max bounces "),
             );
             ui.add(egui::DragValue::new(&mut settings.seed).prefix("seed "));
-            ui.checkbox(&mut app.state.per_term_exr, "also one EXR per term");
+            ui.checkbox(&mut state.per_term_exr, "also one EXR per term");
             if super::files::READS_PATHS {
                 ui.horizontal(|ui| {
                     let label = ui.label("save to");
-                    ui.text_edit_singleline(&mut app.state.export_dir)
+                    ui.text_edit_singleline(&mut state.export_dir)
                         .labelled_by(label.id);
                 });
             } else {
                 ui.label("saved files go to the browser's downloads");
             }
         });
+    action
 }
 
-/// "Save as shown" and the size of its picture.
-fn shown_size_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+/// "Save as shown" and the size of its picture: true when clicked.
+fn shown_size_ui(ui: &mut egui::Ui, shown_size: &mut (u32, u32)) -> bool {
     use crate::tools::slides::shown::{MAX_SIDE, MIN_SIDE};
     ui.horizontal(|ui| {
-        if ui
+        let clicked = ui
             .button("Save as shown")
             .on_hover_text(
                 "One PNG of the picture as shown — the image, or a noise view with its colour bar, \
                  A | B, the four-up, the probe's rays, a lesson step's title, formula and caption \
                  laid out as its slide — at this size, with the settings (JSON)",
             )
-            .clicked()
-        {
-            app.save_as_shown();
-        }
-        let (width, height) = &mut app.state.shown_size;
+            .clicked();
+        let (width, height) = shown_size;
         let sides = MIN_SIDE..=MAX_SIDE;
         ui.add(egui::DragValue::new(width).range(sides.clone()))
             .on_hover_text("The picture's width, in pixels");
         ui.label("×");
         ui.add(egui::DragValue::new(height).range(sides))
             .on_hover_text("The picture's height, in pixels");
-    });
+        clicked
+    })
+    .inner
+}
+
+#[cfg(test)]
+mod tests {
+    use egui_kittest::Harness;
+    use egui_kittest::kittest::Queryable;
+
+    use super::*;
+
+    /// The Terms group edits the terms it is given, with no app around it,
+    /// and never lets the last visible term go.
+    #[test]
+    fn the_terms_group_toggles_the_terms_it_is_given() {
+        let mut harness = Harness::new_ui_state(
+            |ui, terms: &mut TermSet| terms_ui(ui, terms),
+            TermSet::only(Term::L1),
+        );
+        harness.get_by_label("L2").click();
+        harness.run();
+        assert_eq!(
+            *harness.state(),
+            TermSet::only(Term::L1).with(Term::L2, true)
+        );
+        harness.get_by_label("L2").click();
+        harness.run();
+        harness.get_by_label("L1").click();
+        harness.run();
+        assert_eq!(
+            *harness.state(),
+            TermSet::only(Term::L1),
+            "one term stays on"
+        );
+    }
+
+    /// The Render group's buttons come back as actions for the app.
+    #[test]
+    fn the_render_group_returns_its_buttons_actions() {
+        let mut harness = Harness::new_ui_state(
+            |ui, (state, paused, asked): &mut (Persisted, bool, Vec<&'static str>)| match render_ui(
+                ui, state, paused,
+            ) {
+                Some(RenderAction::SaveScreenshot) => asked.push("screenshot"),
+                Some(RenderAction::SaveAsShown) => asked.push("as shown"),
+                Some(RenderAction::ResetToDefaults) => asked.push("defaults"),
+                None => {}
+            },
+            (Persisted::default(), false, Vec::new()),
+        );
+        for button in [
+            "Pause",
+            "Save screenshot",
+            "Save as shown",
+            "Reset to defaults",
+        ] {
+            harness.get_by_label(button).click();
+            harness.run();
+        }
+        let (_, paused, asked) = harness.state();
+        assert!(*paused);
+        assert_eq!(asked, &["screenshot", "as shown", "defaults"]);
+    }
 }

@@ -197,27 +197,27 @@ pub enum ScriptShown {
 /// Scripted runs, once the image is final: writes the `--save-as-shown`
 /// picture; true once it is written (or failed, which the run reports).
 pub fn script_step(app: &mut LumiereApp, ctx: &egui::Context) -> bool {
-    match std::mem::take(&mut app.script_shown) {
+    match std::mem::take(&mut app.script.shown) {
         ScriptShown::Done => return true,
         ScriptShown::Pending(path) => match job(app, Target::File(path), app.state.shown_size) {
             Ok(job) => {
-                app.script_shown =
+                app.script.shown =
                     ScriptShown::Running(threads::spawn("lumiere export", || job.run()))
             }
             Err(e) => {
-                app.script_failed(e);
+                app.script.failed(e);
                 return true;
             }
         },
         ScriptShown::Running(handle) if handle.is_finished() => {
             match handle.join() {
                 Some(Ok(done)) => eprintln!("{}", done.message),
-                Some(Err(e)) => app.script_failed(e),
-                None => app.script_failed("the picture could not be written".into()),
+                Some(Err(e)) => app.script.failed(e),
+                None => app.script.failed("the picture could not be written".into()),
             }
             return true;
         }
-        running => app.script_shown = running,
+        running => app.script.shown = running,
     }
     ctx.request_repaint_after(std::time::Duration::from_millis(20));
     false

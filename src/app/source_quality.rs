@@ -4,17 +4,16 @@
 
 use eframe::egui;
 
-use super::LumiereApp;
-use crate::course::{MAX_SAMPLES_PER_VERTEX, SourceQuality};
+use crate::course::{MAX_SAMPLES_PER_VERTEX, RenderSettings, SourceQuality};
+use crate::scene::Scene;
 use crate::transport::sources;
 
-pub fn source_quality_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
-    let scene = std::sync::Arc::clone(&app.scene);
-    let settings = &mut app.state.settings;
+/// Edits `settings.sources` for the sources of `scene`.
+pub fn source_quality_ui(ui: &mut egui::Ui, settings: &mut RenderSettings, scene: &Scene) {
     let mut per_source = !settings.sources.is_empty();
-    let names: Vec<String> = sources::sources(&scene)
+    let names: Vec<String> = sources::sources(scene)
         .into_iter()
-        .map(|key| key.name(&scene).to_string())
+        .map(|key| key.name(scene).to_string())
         .collect();
     let toggle = ui
         .add_enabled(

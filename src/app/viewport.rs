@@ -13,6 +13,40 @@ use super::{LumiereApp, display, interact, lesson_view, split};
 use crate::render::four_up::{Arrangement, TILES};
 use crate::render::progressive::Snapshot;
 
+/// How the image is scaled in the viewport.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Zoom {
+    /// Screen pixels per film pixel; `None` fits the image to the window.
+    pub scale: Option<u32>,
+    /// Offset of the zoomed image from the centre, in points.
+    pub pan: egui::Vec2,
+}
+
+impl Zoom {
+    /// The zoom buttons: fit, 1:1, 2×, 4×, 8× (a new scale recentres).
+    pub fn ui(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            ui.label("zoom");
+            for (scale, text) in [
+                (None, "Fit"),
+                (Some(1), "1:1"),
+                (Some(2), "2×"),
+                (Some(4), "4×"),
+                (Some(8), "8×"),
+            ] {
+                if ui.selectable_label(self.scale == scale, text).clicked() {
+                    *self = Self {
+                        scale,
+                        pan: egui::Vec2::ZERO,
+                    };
+                }
+            }
+        })
+        .response
+        .on_hover_text("Screen pixels per film pixel (nearest neighbour); Shift+drag pans");
+    }
+}
+
 /// The image, fitted to the free space, keeping the render's aspect; returns where.
 pub fn viewport(app: &mut LumiereApp, ui: &mut egui::Ui, snapshot: &Arc<Snapshot>) -> egui::Rect {
     egui::CentralPanel::default()
@@ -45,9 +79,9 @@ pub fn viewport(app: &mut LumiereApp, ui: &mut egui::Ui, snapshot: &Arc<Snapshot
             let (columns, rows) = four_up.map_or((1, 1), |a| (a.columns(), a.rows()));
             let ppp = ui.ctx().pixels_per_point();
             let film = egui::vec2((columns * width) as f32, (rows * height) as f32);
-            let (size, centre) = match app.zoom {
-                // nearest neighbour: each film pixel is a square of `zoom` screen pixels
-                Some(zoom) => (film * zoom as f32 / ppp, available.center() + app.pan),
+            let (size, centre) = match app.zoom.scale {
+                // nearest neighbour: each film pixel is a square of `scale` screen pixels
+                Some(scale) => (film * scale as f32 / ppp, available.center() + app.zoom.pan),
                 None => {
                     let aspect = film.x / film.y;
                     let size = if available.width() / available.height() > aspect {
