@@ -29,13 +29,28 @@ pub struct LessonState {
 /// The key that enters and leaves presentation mode.
 pub const PRESENT_KEY: egui::Key = egui::Key::F5;
 
+/// What the Lesson group asks the app to do: both replace the scene and
+/// the settings.
+pub enum LessonAction {
+    /// Open the built-in lesson or the lesson file of this name, on its first step.
+    Open(String),
+    /// Show this step of the open lesson.
+    ShowStep(usize),
+}
+
 /// The Lesson group: open a built-in lesson or a file, step through it,
-/// choose the language, present.
-pub fn lesson_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
+/// choose the language, present, the interface's scale. Edits `state`;
+/// opening and stepping come back as an action for the app.
+pub fn lesson_ui(
+    ui: &mut egui::Ui,
+    state: &mut LessonState,
+    ui_scale: &mut f32,
+) -> Option<LessonAction> {
+    let mut action = None;
     egui::CollapsingHeader::new("Lesson")
-        .default_open(app.lesson.lesson.is_some())
+        .default_open(state.lesson.is_some())
         .show(ui, |ui| {
-            let open_name = app.lesson.lesson.as_ref().map(|l| l.name.clone());
+            let open_name = state.lesson.as_ref().map(|l| l.name.clone());
             let mut chosen = None;
             egui::ComboBox::from_label("lesson")
                 .selected_text(open_name.as_deref().unwrap_or("none"))
@@ -55,35 +70,30 @@ pub fn lesson_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
             if super::files::READS_PATHS {
                 ui.horizontal(|ui| {
                     let field = ui.add(
-                        egui::TextEdit::singleline(&mut app.lesson.file_field)
+                        egui::TextEdit::singleline(&mut state.file_field)
                             .hint_text("lesson.toml")
                             .desired_width(150.0),
                     );
-                    let enter =
-                        field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-                    if (ui.button("Open").clicked() || enter) && !app.lesson.file_field.is_empty() {
-                        chosen = Some(app.lesson.file_field.clone());
+                    let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+                    if (ui.button("Open").clicked() || enter) && !state.file_field.is_empty() {
+                        chosen = Some(state.file_field.clone());
                     }
                 });
             }
             if let Some(name) = chosen {
-                // a lesson that cannot be read leaves everything as it is
-                match Lesson::load(&name) {
-                    Ok(lesson) => open(app, lesson, 0),
-                    Err(e) => app.message = Some(format!("error: {e}")),
-                }
+                action = Some(LessonAction::Open(name));
             }
-            let Some(lesson) = app.lesson.lesson.clone() else {
+            let Some(lesson) = state.lesson.clone() else {
                 return;
             };
             ui.horizontal(|ui| {
-                let step = app.lesson.step;
+                let step = state.step;
                 if ui
                     .add_enabled(step > 0, egui::Button::new("◀"))
                     .on_hover_text("Previous step (← or PageUp)")
                     .clicked()
                 {
-                    show_step(app, step - 1);
+                    action = Some(LessonAction::ShowStep(step - 1));
                 }
                 ui.label(format!("step {} of {}", step + 1, lesson.steps.len()));
                 if ui
@@ -91,25 +101,40 @@ pub fn lesson_ui(app: &mut LumiereApp, ui: &mut egui::Ui) {
                     .on_hover_text("Next step (→ or PageDown)")
                     .clicked()
                 {
-                    show_step(app, step + 1);
+                    action = Some(LessonAction::ShowStep(step + 1));
                 }
-                if ui.button("Close").on_hover_text("Close the lesson").clicked() {
-                    app.lesson.lesson = None;
+                if ui
+                    .button("Close")
+                    .on_hover_text("Close the lesson")
+                    .clicked()
+                {
+                    state.lesson = None;
                 }
             });
             ui.horizontal(|ui| {
                 for lang in [Lang::Fr, Lang::En] {
-                    ui.radio_value(&mut app.lesson.lang, lang, lang.to_string());
+                    ui.radio_value(&mut state.lang, lang, lang.to_string());
                 }
-                ui.checkbox(&mut app.lesson.presenting, "present")
-                    .on_hover_text("Presentation mode (F5): no side panel, the interface scaled for a projector");
+                ui.checkbox(&mut state.presenting, "present").on_hover_text(
+                    "Presentation mode (F5): no side panel, the interface scaled for a projector",
+                );
             });
-            ui.add(
-                egui::Slider::new(&mut app.state.ui_scale, 0.75..=3.0)
-                    .text("interface scale"),
-            )
-            .on_hover_text("The size of the whole interface, in presentation mode too");
+            ui.add(egui::Slider::new(ui_scale, 0.75..=3.0).text("interface scale"))
+                .on_hover_text("The size of the whole interface, in presentation mode too");
         });
+    action
+}
+
+/// Does what the Lesson group asked: a lesson that cannot be read leaves
+/// everything as it is, and says why.
+pub fn act(app: &mut LumiereApp, action: LessonAction) {
+    match action {
+        LessonAction::Open(name) => match Lesson::load(&name) {
+            Ok(lesson) => open(app, lesson, 0),
+            Err(e) => app.message = Some(format!("error: {e}")),
+        },
+        LessonAction::ShowStep(step) => show_step(app, step),
+    }
 }
 
 /// Opens `lesson` on step `step` (from 0; clamped to the last).

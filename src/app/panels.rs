@@ -1,15 +1,16 @@
 //! The viewer's widgets: side panel groups, status bar, shortcuts.
 //! Each group edits the plain state it is given (the settings, the display
 //! settings, the camera); `side_panel` hands each its part of the app, and
-//! `LumiereApp::sync_renderer` then tells the worker what changed. The
-//! groups that open a lesson, load a scene or start B take the app: they
-//! change most of it.
+//! `LumiereApp::sync_renderer` then tells the worker what changed. Buttons
+//! that change most of the app (a lesson's step, a reset) come back as
+//! actions; the groups that load a scene, select an object or start B
+//! take the app.
 
 use eframe::egui;
 use strum::IntoEnumIterator;
 
-use super::noise_view;
 use super::{LumiereApp, Persisted, interact, reference, split};
+use super::{lesson_view, noise_view};
 use crate::analysis::noise::{DisplayMode, NoiseSource, Scale};
 use crate::course::Choice;
 use crate::course::{BrdfOverride, LightMode, MAX_IOR, RenderSettings, Term, TermSet};
@@ -175,7 +176,10 @@ pub fn side_panel(app: &mut LumiereApp, ui: &mut egui::Ui) {
         .default_size(300.0)
         .show(ui, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
-                super::lesson_view::lesson_ui(app, ui);
+                let lesson = lesson_view::lesson_ui(ui, &mut app.lesson, &mut app.state.ui_scale);
+                if let Some(action) = lesson {
+                    lesson_view::act(app, action);
+                }
                 terms_ui(ui, &mut app.state.settings.terms);
                 lights_ui(
                     ui,
