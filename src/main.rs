@@ -15,6 +15,7 @@ use lumiere::tools::bench::memory::CountingAllocator;
 use cli::bench::BenchArgs;
 use cli::lesson::LessonArgs;
 use cli::lessons::LessonsArgs;
+use cli::probe::ProbeArgs;
 use cli::render::RenderArgs;
 use cli::serve::ServeArgs;
 use cli::stress::StressArgs;
@@ -53,6 +54,8 @@ enum Command {
     Lessons(LessonsArgs),
     /// Export a lesson as slides: each step rendered with its title, formula and caption (PNG, GIF with --gif), and an index.md.
     Lesson(LessonArgs),
+    /// The integral at one pixel's first hit: its integrand over the hemisphere (EXR), the quadrature and the estimator's mean.
+    Probe(ProbeArgs),
     /// Serve the web build's folder (`bash .ci/build-web OUT`) on 127.0.0.1, with the headers its threads need.
     Serve(ServeArgs),
 }
@@ -66,6 +69,7 @@ fn main() -> ExitCode {
         Some(Command::Bench(args)) => cli::bench::run(&args),
         Some(Command::Lessons(args)) => cli::lessons::run(&args),
         Some(Command::Lesson(args)) => cli::lesson::run(&args),
+        Some(Command::Probe(args)) => cli::probe::run(&args),
         Some(Command::Serve(args)) => cli::serve::run(&args),
         None => cli::view::run(ViewArgs::defaults(), true),
     };

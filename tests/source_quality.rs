@@ -236,6 +236,7 @@ fn every_source_gets_exactly_its_own_samples() {
         &context,
         ray_to_floor(x, y),
         &SampleStream::new(3, 0, 0),
+        context.settings.terms,
         &mut counts,
     );
     assert_eq!(counts.shadow, 4, "1 + 3 shadow rays");

@@ -4,6 +4,7 @@
 
 pub mod capture;
 pub mod convergence;
+pub mod hemisphere;
 pub mod metrics;
 pub mod noise;
 pub mod path_view;

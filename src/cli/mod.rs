@@ -7,6 +7,7 @@ pub mod lesson;
 pub mod lessons;
 pub mod options;
 pub mod parsers;
+pub mod probe;
 pub mod render;
 pub mod serve;
 pub mod stress;

@@ -115,6 +115,13 @@ impl TermSet {
         }
     }
 
+    /// The terms of `self` not in `other`.
+    pub fn difference(self, other: TermSet) -> Self {
+        Self {
+            bits: self.bits & !other.bits,
+        }
+    }
+
     pub fn iter(self) -> impl Iterator<Item = Term> {
         Term::ALL.into_iter().filter(move |&t| self.contains(t))
     }

@@ -83,16 +83,24 @@ pub fn sample_pixel(
     guard_sample(radiance, counts)
 }
 
-/// Radiance arriving along `ray` (unit direction), per term, for the
-/// settings' terms with the continuations of the whole image; unguarded.
+/// Radiance arriving along `ray` (unit direction), per term, for `terms`
+/// (those of the settings; the others come out zero) with the continuations of the whole image; unguarded. The checks and
+/// the hemisphere view trace rays that start anywhere, not at the camera.
 pub fn trace(
     context: &RenderContext,
     ray: Ray,
     stream: &SampleStream,
+    terms: TermSet,
     counts: &mut RayCounts,
 ) -> TermRadiance {
-    let (terms, splits) = (context.settings.terms, context.continuations.count);
-    integrate(context, ray, stream, terms, splits, counts)
+    integrate(
+        context,
+        ray,
+        stream,
+        terms,
+        context.continuations.count,
+        counts,
+    )
 }
 
 /// One sample of pixel (`x`, `y`) by the fast integrator with two

@@ -211,7 +211,8 @@ pub fn estimate(context: &RenderContext, ray: Ray, term: Term, n: u64, seed: u64
     for i in 0..n {
         let stream = SampleStream::new(seed, 0, i);
         // `trace` is unguarded: a NaN or a negative value reaches the test
-        let radiance = lumiere::transport::trace(context, ray, &stream, &mut counts);
+        let radiance =
+            lumiere::transport::trace(context, ray, &stream, context.settings.terms, &mut counts);
         assert!(
             radiance
                 .iter()

@@ -1,0 +1,316 @@
+//! The integral at a point: the quadrature of the integrand map over the
+//! hemisphere equals the estimators' mean at the pixel's first hit, for
+//! L1 and L2, area and point lights, Lambert and Phong, both integrators;
+//! a point light is a direction, not an area; L2's map is zero where the
+//! sources are.
+
+use glam::{Vec2, Vec3};
+
+use lumiere::analysis::hemisphere::{HemisphereError, IntegrandMap, estimator_mean, integrand_map};
+use lumiere::course::color::luminance;
+use lumiere::course::{Integrator, LightMode};
+use lumiere::geometry::Ray;
+use lumiere::scene::builtin;
+use lumiere::{BrdfOverride, RenderContext, RenderSettings, Term, TermSet};
+
+const WIDTH: u32 = 64;
+const HEIGHT: u32 = 48;
+
+fn context(scene: &str, settings: RenderSettings) -> RenderContext {
+    let settings = RenderSettings {
+        width: WIDTH,
+        height: HEIGHT,
+        terms: TermSet::ALL,
+        ..settings
+    };
+    RenderContext::new(builtin::load(scene).unwrap(), settings)
+}
+
+fn pixel_ray(context: &RenderContext, x: u32, y: u32) -> Ray {
+    context.camera.generate(x, y, Vec2::splat(0.5))
+}
+
+/// The map's quadrature against the estimator's mean: within four combined
+/// standard errors (fixed seeds), the quadrature's error below 5%.
+fn assert_quadrature_agrees(what: &str, context: &RenderContext, x: u32, y: u32, terms: TermSet) {
+    assert_fine_quadrature_agrees(what, context, x, y, terms, (4, 0.05));
+}
+
+/// [`assert_quadrature_agrees`] with `directions` per pixel of the map,
+/// its standard error below `coarseness` of the value.
+fn assert_fine_quadrature_agrees(
+    what: &str,
+    context: &RenderContext,
+    x: u32,
+    y: u32,
+    terms: TermSet,
+    (directions, coarseness): (u32, f64),
+) {
+    let ray = pixel_ray(context, x, y);
+    let map = integrand_map(context, &ray, terms, 96, directions, 7)
+        .unwrap_or_else(|e| panic!("{what}: {e}"));
+    let (mean, mean_error) = estimator_mean(context, &ray, terms, (y * WIDTH + x) as u64, 8192);
+    let (quadrature, mean) = (luminance(map.quadrature()) as f64, luminance(mean) as f64);
+    assert!(mean > 1e-4, "{what}: the term is not zero there ({mean})");
+    let combined = (map.integral_standard_error.powi(2) + mean_error.powi(2)).sqrt();
+    let z = (quadrature - mean) / combined.max(1e-5 * mean);
+    assert!(
+        z.abs() < 4.0,
+        "{what}: quadrature {quadrature} ± {}, estimator {mean} ± {mean_error} (z = {z:.2})",
+        map.integral_standard_error
+    );
+    assert!(
+        map.integral_standard_error < coarseness * mean.max(quadrature),
+        "{what}: the map is too coarse to tell ({quadrature} ± {})",
+        map.integral_standard_error
+    );
+}
+
+#[test]
+fn the_quadrature_of_direct_lighting_is_the_estimators_mean() {
+    let cornell = context("cornell", RenderSettings::default());
+    // the back wall, under the light, and the red wall
+    assert_quadrature_agrees("L1, back wall", &cornell, 32, 15, TermSet::only(Term::L1));
+    assert_quadrature_agrees("L1, red wall", &cornell, 10, 40, TermSet::only(Term::L1));
+    let phong = context(
+        "cornell",
+        RenderSettings {
+            brdf: BrdfOverride::Phong,
+            ..RenderSettings::default()
+        },
+    );
+    assert_quadrature_agrees("L1, Phong", &phong, 32, 15, TermSet::only(Term::L1));
+    let spheres = context(
+        "cornell-point",
+        RenderSettings {
+            light_mode: LightMode::Area,
+            ..RenderSettings::default()
+        },
+    );
+    // a small sphere: few pixels of the map, finely sampled
+    let l1 = TermSet::only(Term::L1);
+    assert_fine_quadrature_agrees("L1, a sphere light", &spheres, 32, 15, l1, (64, 0.05));
+}
+
+#[test]
+fn the_quadrature_of_one_indirect_bounce_is_the_estimators_mean() {
+    let cornell = context("cornell", RenderSettings::default());
+    assert_quadrature_agrees("L2, back wall", &cornell, 32, 15, TermSet::only(Term::L2));
+    assert_quadrature_agrees("L2, floor", &cornell, 20, 44, TermSet::only(Term::L2));
+    let lecture = context(
+        "cornell",
+        RenderSettings {
+            integrator: Integrator::Lecture,
+            ..RenderSettings::default()
+        },
+    );
+    assert_quadrature_agrees("L2, lecture", &lecture, 20, 44, TermSet::only(Term::L2));
+    let phong = context(
+        "cornell",
+        RenderSettings {
+            brdf: BrdfOverride::Phong,
+            ..RenderSettings::default()
+        },
+    );
+    assert_quadrature_agrees("L2, Phong", &phong, 32, 15, TermSet::only(Term::L2));
+    // the ceiling beside a point light: a peak of 1/d², finely sampled
+    let point = context("cornell-point", RenderSettings::default());
+    let l2 = TermSet::only(Term::L2);
+    assert_fine_quadrature_agrees("L2, point light", &point, 20, 44, l2, (64, 0.1));
+    // the floor beside the glass block: light through the glass is L2
+    let glass = context("cornell-glass", RenderSettings::default());
+    assert_quadrature_agrees("L2, glass", &glass, 20, 44, TermSet::only(Term::L2));
+    let both = TermSet::only(Term::L1).with(Term::L2, true);
+    assert_quadrature_agrees("L1 + L2", &cornell, 20, 44, both);
+}
+
+/// A point light lights p from one direction: no area of the map, one
+/// Dirac whose contribution is the estimator's (which has no noise).
+#[test]
+fn a_point_light_is_a_direction_not_an_area() {
+    let point = context("cornell-point", RenderSettings::default());
+    let ray = pixel_ray(&point, 20, 44);
+    let map = integrand_map(&point, &ray, TermSet::only(Term::L1), 32, 1, 0).unwrap();
+    assert!(map.values.iter().all(|v| *v == Vec3::ZERO), "no area");
+    assert_eq!(map.diracs.len(), 1);
+    let dirac = map.diracs[0];
+    assert!(!dirac.occluded && dirac.disk.length() < 1.0, "{dirac:?}");
+    // above p: the light is in the ceiling
+    assert!(dirac.direction.z > 0.0);
+    let (mean, error) = estimator_mean(&point, &ray, TermSet::only(Term::L1), 0, 16);
+    assert_eq!(error, 0.0, "one point light: every sample is the same");
+    let relative = (map.quadrature() - mean).abs().max_element() / mean.max_element();
+    assert!(relative < 1e-5, "{:?} vs {mean:?}", map.quadrature());
+}
+
+/// Ω = Ω⁺ − Ω_S: where the map of L1 sees the light, the map of L2 is zero
+/// (the light reflects nothing), and it is not zero elsewhere.
+#[test]
+fn l2_lives_outside_the_sources_domains() {
+    let cornell = context("cornell", RenderSettings::default());
+    let ray = pixel_ray(&cornell, 32, 15);
+    let direct = integrand_map(&cornell, &ray, TermSet::only(Term::L1), 48, 1, 1).unwrap();
+    let indirect = integrand_map(&cornell, &ray, TermSet::only(Term::L2), 48, 1, 1).unwrap();
+    let mut inside_sources = 0;
+    for (l1, l2) in direct.values.iter().zip(&indirect.values) {
+        if *l1 != Vec3::ZERO {
+            inside_sources += 1;
+            assert_eq!(*l2, Vec3::ZERO, "L2 inside Ω_s");
+        }
+    }
+    assert!(
+        inside_sources > 10,
+        "the light covers {inside_sources} pixels"
+    );
+    let outside = indirect.values.iter().filter(|v| **v != Vec3::ZERO).count();
+    assert!(outside > 48 * 48 / 4, "L2 is seen in {outside} pixels");
+}
+
+/// The map is the same for any number of threads.
+#[test]
+fn the_map_does_not_depend_on_the_threads() {
+    let cornell = context("cornell", RenderSettings::default());
+    let ray = pixel_ray(&cornell, 20, 44);
+    let map = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let map: IntegrandMap = pool
+            .install(|| integrand_map(&cornell, &ray, TermSet::only(Term::L2), 24, 2, 3).unwrap());
+        map.values
+            .iter()
+            .map(|v| v.to_array().map(f32::to_bits))
+            .collect::<Vec<_>>()
+    };
+    assert!(map(1) == map(2));
+}
+
+#[test]
+fn what_has_no_map_is_refused_with_the_reason() {
+    let cornell = context("cornell", RenderSettings::default());
+    let ray = pixel_ray(&cornell, 20, 44);
+    let refused = |context: &RenderContext, ray: &Ray, terms: TermSet| {
+        integrand_map(context, ray, terms, 8, 1, 0).err()
+    };
+    assert_eq!(
+        refused(&cornell, &ray, TermSet::only(Term::L0)),
+        Some(HemisphereError::NotAnIntegral)
+    );
+    let sky = Ray::new(Vec3::new(0.0, 10.0, 0.0), Vec3::Y, f32::INFINITY);
+    assert_eq!(
+        refused(&cornell, &sky, TermSet::only(Term::L1)),
+        Some(HemisphereError::NoSurface)
+    );
+    let mirror = context(
+        "cornell",
+        RenderSettings {
+            brdf: BrdfOverride::Mirror,
+            ..RenderSettings::default()
+        },
+    );
+    assert_eq!(
+        refused(&mirror, &ray, TermSet::only(Term::L1)),
+        Some(HemisphereError::DiracBrdf)
+    );
+    let without_l1 = RenderContext::new(
+        builtin::cornell(),
+        RenderSettings {
+            width: WIDTH,
+            height: HEIGHT,
+            terms: TermSet::only(Term::L2),
+            ..RenderSettings::default()
+        },
+    );
+    assert_eq!(
+        refused(&without_l1, &ray, TermSet::only(Term::L2)),
+        Some(HemisphereError::TermsLeftOut(TermSet::only(Term::L1)))
+    );
+}
+
+fn lumiere(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(args)
+        .output()
+        .expect("lumiere runs")
+}
+
+/// `lumiere probe … --hemisphere`: the map as a linear EXR of its size, and
+/// one `name: value` per line; the quadrature agrees with the mean.
+#[test]
+fn cli_writes_the_map_and_prints_the_quadrature_beside_the_mean() {
+    let dir = std::env::temp_dir().join(format!("lumiere-hemisphere-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let exr = dir.join("map.exr");
+    let output = lumiere(&[
+        "probe",
+        "cornell",
+        "--pixel",
+        "20,44",
+        "--width",
+        "64",
+        "--height",
+        "48",
+        "--terms",
+        "L2",
+        "--hemisphere",
+        exr.to_str().unwrap(),
+        "--size",
+        "40",
+    ]);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let value = |name: &str| -> f64 {
+        let line = stdout
+            .lines()
+            .find_map(|l| l.strip_prefix(&format!("{name}: ")))
+            .unwrap_or_else(|| panic!("no `{name}:` in\n{stdout}"));
+        line.parse().unwrap_or_else(|_| panic!("{name}: {line}"))
+    };
+    assert!(value("quadrature") > 0.0);
+    assert!(value("z").abs() < 4.0, "{stdout}");
+    assert!(value("estimator standard error") > 0.0);
+    let map = image::open(&exr).unwrap();
+    assert_eq!((map.width(), map.height()), (40, 40));
+    // outside the disk there are no directions
+    assert_eq!(map.to_rgb32f().get_pixel(0, 0).0, [0.0; 3]);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn cli_refuses_what_has_no_map_naming_the_problem() {
+    let out = std::env::temp_dir().join("lumiere-never-written.exr");
+    let out = out.to_str().unwrap();
+    let base = ["probe", "cornell", "--width", "64", "--height", "48"];
+    let refused = |extra: &[&str], code: i32, says: &str| {
+        let output = lumiere(&[&base[..], extra].concat());
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(code), "{extra:?}: {stderr}");
+        assert!(stderr.contains(says), "{extra:?}: {stderr}");
+    };
+    refused(
+        &["--pixel", "64,10", "--hemisphere", out],
+        2,
+        "outside the 64×48 image",
+    );
+    refused(
+        &["--pixel", "10,10", "--terms", "L0", "--hemisphere", out],
+        2,
+        "not an integral",
+    );
+    refused(
+        &["--pixel", "10,10", "--hemisphere", "map.txt"],
+        2,
+        "map.txt",
+    );
+    refused(&["--pixel", "1,1", "--hemisphere", out], 1, "no surface");
+    refused(
+        &["--pixel", "20,44", "--brdf", "mirror", "--hemisphere", out],
+        1,
+        "Dirac",
+    );
+}
