@@ -6,7 +6,12 @@
 
 use glam::{Vec2, Vec3};
 
-use lumiere::analysis::hemisphere::{HemisphereError, IntegrandMap, estimator_mean, integrand_map};
+use lumiere::analysis::domains::{SourceDomains, source_domains};
+use lumiere::analysis::hemisphere::{
+    Factor, HemisphereError, IntegrandMap, ShadingPoint, estimator_mean, integrand_map,
+};
+use lumiere::analysis::hemisphere_colour::colour_map;
+use lumiere::analysis::noise::Scale;
 use lumiere::course::color::luminance;
 use lumiere::course::{Integrator, LightMode};
 use lumiere::geometry::Ray;
@@ -133,7 +138,7 @@ fn a_point_light_is_a_direction_not_an_area() {
     let map = integrand_map(&point, &ray, TermSet::only(Term::L1), 32, 1, 0).unwrap();
     assert!(map.values.iter().all(|v| *v == Vec3::ZERO), "no area");
     assert_eq!(map.diracs.len(), 1);
-    let dirac = map.diracs[0];
+    let dirac = map.diracs[0].clone();
     assert!(!dirac.occluded && dirac.disk.length() < 1.0, "{dirac:?}");
     // above p: the light is in the ceiling
     assert!(dirac.direction.z > 0.0);
@@ -164,6 +169,130 @@ fn l2_lives_outside_the_sources_domains() {
     );
     let outside = indirect.values.iter().filter(|v| **v != Vec3::ZERO).count();
     assert!(outside > 48 * 48 / 4, "L2 is seen in {outside} pixels");
+}
+
+/// The sources' domains: named, and where something stands between p and
+/// a source, L1's integrand has a hole (the shadow) inside Ω_s, which L2
+/// does not fill either (the source reflects nothing).
+#[test]
+fn a_shadow_is_a_hole_in_the_sources_domain() {
+    let cornell = context("cornell", RenderSettings::default());
+    let size = 128;
+    // the floor beside the boxes, until a point deep in their penumbra:
+    // a third of the light hidden or more (looked for on a coarse map)
+    let counts = |domains: &SourceDomains| {
+        let of = |visible: bool| {
+            (0..domains.source.len())
+                .filter(|&i| domains.source[i].is_some() && domains.visible[i] == visible)
+                .count()
+        };
+        (of(false), of(true))
+    };
+    let found = (28..HEIGHT)
+        .rev()
+        .flat_map(|y| (4..WIDTH - 4).map(move |x| (x, y)))
+        .find_map(|(x, y)| {
+            let ray = pixel_ray(&cornell, x, y);
+            let p = ShadingPoint::seen(&cornell, &ray)?;
+            let (hidden, seen) = counts(&source_domains(&cornell, &p, 32));
+            if hidden == 0 || seen == 0 {
+                return None;
+            }
+            let domains = source_domains(&cornell, &p, size);
+            let (hidden, seen) = counts(&domains);
+            (hidden * 2 >= seen && seen * 2 >= hidden).then_some((ray, domains))
+        });
+    let (ray, domains) = found.expect("a point of the floor sees the light partly hidden");
+    assert_eq!(domains.names, ["light"], "the source, by its name");
+    let labels = domains.labels();
+    assert_eq!(labels.len(), 1);
+    assert!(labels[0].share > 0.0 && labels[0].share < 0.5, "{labels:?}");
+    assert!(!domains.outline().is_empty());
+    let direct = integrand_map(&cornell, &ray, TermSet::only(Term::L1), size, 1, 3).unwrap();
+    let indirect = integrand_map(&cornell, &ray, TermSet::only(Term::L2), size, 1, 3).unwrap();
+    let (mut hole, mut lit) = (0, 0);
+    // a pixel's centre decides its domain, its one direction is jittered:
+    // a pixel is judged when its four neighbours are of its kind, or, for
+    // the shadow, when none of them sees the light
+    let kind = |i: usize| (domains.source[i].is_some(), domains.visible[i]);
+    let n = size as usize;
+    let neighbours = |i: usize| [i - 1, i + 1, i - n, i + n];
+    for i in n + 1..domains.source.len() - n - 1 {
+        match kind(i) {
+            (true, true) if neighbours(i).iter().all(|&j| kind(j) == (true, true)) => {
+                lit += usize::from(direct.values[i] != Vec3::ZERO);
+                assert_eq!(indirect.values[i], Vec3::ZERO, "L2 inside Ω_s, pixel {i}");
+            }
+            (true, false) if neighbours(i).iter().all(|&j| kind(j) != (true, true)) => {
+                hole += 1;
+                assert_eq!(direct.values[i], Vec3::ZERO, "L1 in the shadow, pixel {i}");
+            }
+            _ => {}
+        }
+    }
+    assert!(hole > 0 && lit > 0, "{hole} pixels of shadow, {lit} lit");
+}
+
+/// The factors apart multiply to the integrand, direction by direction;
+/// f_r of a Lambert surface is its albedo over π; cos θ is 1 − r² on the
+/// equal-area disk.
+#[test]
+fn the_factors_multiply_to_the_integrand() {
+    let cornell = context("cornell", RenderSettings::default());
+    let ray = pixel_ray(&cornell, 32, 15);
+    let size = 32;
+    let map = integrand_map(&cornell, &ray, TermSet::only(Term::L2), size, 1, 5).unwrap();
+    let mut lit = 0;
+    for i in 0..map.values.len() {
+        let product = map.incident[i] * map.brdf[i] * map.cosine[i];
+        assert!(
+            (product - map.values[i]).abs().max_element()
+                <= 1e-5 * map.values[i].max_element().max(1e-6)
+        );
+        lit += usize::from(map.incident[i] != Vec3::ZERO);
+        let centre =
+            IntegrandMap::disk_point(size, i as u32 % size, i as u32 / size, Vec2::splat(0.5));
+        if centre.length() < 0.9 {
+            assert!(
+                (map.cosine[i] - (1.0 - centre.length_squared())).abs() < 0.1,
+                "cos θ at {centre}"
+            );
+            let albedo_over_pi = map.brdf[i] * std::f32::consts::PI;
+            assert!(albedo_over_pi.max_element() < 1.0 && albedo_over_pi.min_element() > 0.0);
+            assert!(
+                (map.brdf[i] - map.brdf[size as usize * size as usize / 2 + size as usize / 2])
+                    .abs()
+                    .max_element()
+                    < 1e-6,
+                "Lambert: one f_r"
+            );
+        }
+    }
+    assert!(lit > 100, "L_i is seen in {lit} pixels");
+    let layer = map.layer(Factor::Cosine);
+    assert_eq!(layer, map.cosine);
+}
+
+/// The colour bar: linear from 0 to the largest value, log over four
+/// decades below it; no colour outside the disk.
+#[test]
+fn the_coloured_map_states_its_range() {
+    let cornell = context("cornell", RenderSettings::default());
+    let ray = pixel_ray(&cornell, 32, 15);
+    let map = integrand_map(&cornell, &ray, TermSet::only(Term::L2), 32, 1, 5).unwrap();
+    let largest = map.values.iter().map(|&v| luminance(v)).fold(0.0, f32::max);
+    let linear = colour_map(&map, Factor::Integrand, Scale::Linear);
+    assert_eq!(linear.range, (0.0, largest));
+    assert_eq!(linear.srgba.len(), 32 * 32 * 4);
+    assert_eq!(
+        &linear.srgba[..4],
+        &[0, 0, 0, 0],
+        "a corner is outside the disk"
+    );
+    let log = colour_map(&map, Factor::Integrand, Scale::Log);
+    assert!((log.range.0 / log.range.1 - 1e-4).abs() < 1e-7);
+    assert!((log.value_at(0.5) - largest * 1e-2).abs() < 1e-3 * largest);
+    assert!((log.position_of(largest * 1e-2) - 0.5).abs() < 1e-4);
 }
 
 /// The map is the same for any number of threads.

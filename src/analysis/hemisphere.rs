@@ -106,11 +106,15 @@ impl ShadingPoint {
     /// f_r(p, ω → ωo) cos θ for the direction `w_local` of the frame:
     /// zero below the surface, geometric or shading.
     fn reflected(&self, w_local: Vec3) -> Vec3 {
-        let w = self.frame.to_world(w_local);
-        if w_local.z <= 0.0 || w.dot(self.ng) <= 0.0 {
+        if !self.is_above(w_local) {
             return Vec3::ZERO;
         }
         self.brdf.eval(self.wo_local, w_local) * w_local.z
+    }
+
+    /// Whether `w_local` leaves p above both its shading and geometric surfaces.
+    fn is_above(&self, w_local: Vec3) -> bool {
+        w_local.z > 0.0 && self.frame.to_world(w_local).dot(self.ng) > 0.0
     }
 }
 
@@ -135,7 +139,7 @@ fn view_frame(shading: Frame, wo: Vec3) -> Frame {
 
 /// A point light's direction: the integrand of L1 is a Dirac there, its
 /// integral the light's contribution L_e f_r cos θ / d² (zero if hidden).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct DiracDirection {
     /// In the shading frame.
     pub direction: Vec3,
@@ -144,6 +148,8 @@ pub struct DiracDirection {
     /// Its contribution to the term (W/m²/sr), zero when occluded.
     pub radiance: Vec3,
     pub occluded: bool,
+    /// Its source's name.
+    pub name: String,
 }
 
 /// The integrand of terms over Ω⁺ at a point (their sum), on a
@@ -154,6 +160,13 @@ pub struct IntegrandMap {
     /// Mean integrand over each pixel (W/m²/sr per sr), rows from the top;
     /// zero outside the disk.
     pub values: Vec<Vec3>,
+    /// Its factors apart, over the same pixels (means of the same
+    /// directions): L_i (W/m²/sr, the terms arriving), f_r (1/sr), cos θ.
+    pub incident: Vec<Vec3>,
+    pub brdf: Vec<Vec3>,
+    pub cosine: Vec<f32>,
+    /// Directions traced per pixel.
+    pub directions_per_pixel: u32,
     /// The point lights, for L1: Diracs, not part of `values`.
     pub diracs: Vec<DiracDirection>,
     /// The integral of `values` (W/m²/sr), and the standard error of its
@@ -168,6 +181,16 @@ impl IntegrandMap {
         self.integral + self.diracs.iter().map(|d| d.radiance).sum::<Vec3>()
     }
 
+    /// The luminance of `factor` over each pixel.
+    pub fn layer(&self, factor: Factor) -> Vec<f32> {
+        match factor {
+            Factor::Integrand => self.values.iter().map(|&v| luminance(v)).collect(),
+            Factor::Incident => self.incident.iter().map(|&v| luminance(v)).collect(),
+            Factor::Brdf => self.brdf.iter().map(|&v| luminance(v)).collect(),
+            Factor::Cosine => self.cosine.clone(),
+        }
+    }
+
     /// The disk point of pixel (`column`, `row`) + `offset` (in pixels).
     pub fn disk_point(size: u32, column: u32, row: u32, offset: Vec2) -> Vec2 {
         let pixel = 2.0 / size as f32;
@@ -175,6 +198,39 @@ impl IntegrandMap {
             -1.0 + (column as f32 + offset.x) * pixel,
             1.0 - (row as f32 + offset.y) * pixel,
         )
+    }
+}
+
+/// The integrand, or one of its factors apart.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Factor {
+    /// L_i(p, ω) f_r(p, ω → ωo) cos θ: what the term integrates.
+    #[default]
+    Integrand,
+    /// L_i(p, ω): the radiance arriving (for L2, L_direct(q, −ω)).
+    Incident,
+    /// f_r(p, ω → ωo).
+    Brdf,
+    /// cos θ.
+    Cosine,
+}
+
+impl Factor {
+    pub const ALL: [Factor; 4] = [
+        Factor::Integrand,
+        Factor::Incident,
+        Factor::Brdf,
+        Factor::Cosine,
+    ];
+
+    /// Its unit, as the colour bar states it.
+    pub fn unit(self) -> &'static str {
+        match self {
+            Factor::Integrand => "W/m²/sr per sr",
+            Factor::Incident => "W/m²/sr",
+            Factor::Brdf => "1/sr",
+            Factor::Cosine => "no unit",
+        }
     }
 }
 
@@ -241,15 +297,15 @@ pub fn integrand_map(
     let pixel_area = (2.0 / size as f32).powi(2);
     // a pixel's solid angle: each pixel is a stratum of the quadrature
     let pixel_solid_angle = (pixel_area * SOLID_ANGLE_PER_AREA) as f64;
-    let rows: Vec<(Vec<Vec3>, Moments)> = (0..size)
+    let rows: Vec<(Vec<Factors>, Moments)> = (0..size)
         .into_par_iter()
         .map(|row| {
             let mut counts = RayCounts::default();
             let mut moments = Moments::default();
-            let values = (0..size)
+            let pixels = (0..size)
                 .map(|column| {
                     let pixel = (row * size + column) as u64;
-                    let (mut total, mut sum, mut sum2) = (Vec3::ZERO, 0.0f64, 0.0f64);
+                    let (mut total, mut sum, mut sum2) = (Factors::default(), 0.0f64, 0.0f64);
                     for k in 0..per_pixel {
                         let stream =
                             SampleStream::with_sampler(Sampler::Independent, seed, pixel, k as u64);
@@ -257,24 +313,25 @@ pub fn integrand_map(
                         let cell = Vec2::new((k % side) as f32, (k / side) as f32);
                         let offset = (cell + jitter) / side as f32;
                         let disk = IntegrandMap::disk_point(size, column, row, offset);
-                        let value = disk_to_direction(disk).map_or(Vec3::ZERO, |w_local| {
-                            integrand(context, &p, w_local, &stream, arriving, &mut counts)
+                        let factors = disk_to_direction(disk).map_or(Factors::default(), |w| {
+                            factors(context, &p, w, &stream, arriving, &mut counts)
                         });
-                        let y = luminance(value) as f64;
+                        let y = luminance(factors.integrand) as f64;
                         (sum, sum2) = (sum + y, sum2 + y * y);
-                        total += value;
+                        total.add(&factors);
                     }
                     moments.add(sum, sum2, per_pixel, pixel_solid_angle);
-                    total / per_pixel as f32
+                    total.scaled(1.0 / per_pixel as f32)
                 })
                 .collect();
-            (values, moments)
+            (pixels, moments)
         })
         .collect();
     let moments = rows
         .iter()
         .fold(Moments::default(), |a, (_, b)| a.merged(b));
-    let values: Vec<Vec3> = rows.into_iter().flat_map(|r| r.0).collect();
+    let pixels: Vec<Factors> = rows.into_iter().flat_map(|r| r.0).collect();
+    let values: Vec<Vec3> = pixels.iter().map(|f| f.integrand).collect();
     let integral = values.iter().sum::<Vec3>() * pixel_area * SOLID_ANGLE_PER_AREA;
     let diracs = if terms.contains(Term::L1) {
         dirac_directions(context, &p)
@@ -285,6 +342,10 @@ pub fn integrand_map(
         terms,
         size,
         values,
+        incident: pixels.iter().map(|f| f.incident).collect(),
+        brdf: pixels.iter().map(|f| f.brdf).collect(),
+        cosine: pixels.iter().map(|f| f.cosine).collect(),
+        directions_per_pixel: per_pixel,
         diracs,
         integral,
         integral_standard_error: moments.standard_error(),
@@ -346,24 +407,57 @@ impl Moments {
     }
 }
 
-/// The integrand at direction `w_local`: the `arriving` terms along ω,
-/// times f_r cos θ.
-fn integrand(
+/// The integrand at a direction and its factors (or their means over a pixel).
+#[derive(Clone, Copy, Default)]
+struct Factors {
+    integrand: Vec3,
+    incident: Vec3,
+    brdf: Vec3,
+    cosine: f32,
+}
+
+impl Factors {
+    fn add(&mut self, other: &Factors) {
+        self.integrand += other.integrand;
+        self.incident += other.incident;
+        self.brdf += other.brdf;
+        self.cosine += other.cosine;
+    }
+
+    fn scaled(self, s: f32) -> Factors {
+        Factors {
+            integrand: self.integrand * s,
+            incident: self.incident * s,
+            brdf: self.brdf * s,
+            cosine: self.cosine * s,
+        }
+    }
+}
+
+/// The integrand at direction `w_local`: the `arriving` terms along ω
+/// (L_i), times f_r cos θ; each factor apart. Below the geometric surface
+/// (a shading-normal artefact) every factor is zero.
+fn factors(
     context: &RenderContext,
     p: &ShadingPoint,
     w_local: Vec3,
     stream: &SampleStream,
     arriving: TermSet,
     counts: &mut RayCounts,
-) -> Vec3 {
-    let reflected = p.reflected(w_local);
-    if reflected == Vec3::ZERO {
-        return Vec3::ZERO;
+) -> Factors {
+    if !p.is_above(w_local) {
+        return Factors::default();
     }
     let w = p.frame.to_world(w_local).normalize();
     let radiance = trace(context, p.point.spawn_ray(w), stream, arriving, counts);
     let incident: Vec3 = arriving.iter().map(|t| radiance[t.index()]).sum();
-    incident * reflected
+    let brdf = p.brdf.eval(p.wo_local, w_local);
+    Factors {
+        integrand: incident * brdf * w_local.z,
+        incident,
+        brdf,
+        cosine: w_local.z,
+    }
 }
 
 /// The point lights (and lights collapsed to points, and the sun) seen
@@ -390,6 +484,7 @@ fn dirac_directions(context: &RenderContext, p: &ShadingPoint) -> Vec<DiracDirec
                 sample.radiance * p.reflected(direction)
             };
             Some(DiracDirection {
+                name: lights.source_of(index).name(&context.scene).to_owned(),
                 direction,
                 disk: direction_to_disk(direction),
                 radiance,

@@ -11,6 +11,7 @@ pub mod display;
 mod export;
 mod files;
 pub mod four_up_view;
+pub mod hemisphere_view;
 mod interact;
 pub mod lesson_view;
 pub mod noise_view;
@@ -193,6 +194,9 @@ pub struct LumiereApp {
     script: script::ScriptedRun,
     /// Where the image was drawn last frame (points).
     image_rect: Option<egui::Rect>,
+    /// Where the image may be, between a lesson's texts (points): the
+    /// probe's windows stay there, off the texts.
+    windows_area: Option<egui::Rect>,
     orbit: interact::Orbit,
     /// The object clicked last, if any.
     pub selected: Option<u32>,
@@ -223,6 +227,8 @@ pub struct LumiereApp {
     noise_view: noise_view::NoiseViewState,
     /// The pixel probe: its pixel, result and job.
     pub probe: probe_view::ProbeState,
+    /// The integral at the probed point: the integrand over its hemisphere.
+    pub hemisphere: hemisphere_view::HemisphereView,
     /// A click on the image probes the pixel instead of selecting the object.
     pub probe_tool: bool,
     /// The lesson open, if any, and its step.
@@ -284,6 +290,7 @@ impl LumiereApp {
             sent: request,
             script,
             image_rect: None,
+            windows_area: None,
             orbit: interact::Orbit::default(),
             selected: None,
             picking: None,
@@ -301,6 +308,7 @@ impl LumiereApp {
             spawned: 1,
             noise_view: noise_view::NoiseViewState::default(),
             probe: probe_view::ProbeState::default(),
+            hemisphere: hemisphere_view::HemisphereView::default(),
             probe_tool: false,
             lesson: lesson_view::LessonState::default(),
             emitter_areas: interact::EmitterAreas::default(),
@@ -381,6 +389,12 @@ impl LumiereApp {
         self.image_rect
     }
 
+    /// Where the probe's windows may be: the image's area, off a lesson's
+    /// texts (points).
+    pub fn windows_area(&self) -> Option<egui::Rect> {
+        self.windows_area
+    }
+
     /// The latest image the worker published.
     pub fn snapshot(&self) -> Arc<Snapshot> {
         self.renderer.snapshot()
@@ -414,6 +428,7 @@ impl LumiereApp {
             self.renderer.film(),
             snapshot.continuations.clone(),
         );
+        self.hemisphere.update(ctx, &self.sent, self.probe.pixel);
     }
 
     /// Replaces the scene by the one at `spec`; on failure keeps the current one.
@@ -568,7 +583,20 @@ impl eframe::App for LumiereApp {
         let image_rect = viewport::viewport(self, ui, &shown);
         self.image_rect = Some(image_rect);
         convergence::plot_window(self, &ctx);
-        probe_view::probe_window(&ctx, &mut self.probe);
+        let windows_area = self.windows_area.unwrap_or(ctx.content_rect());
+        probe_view::probe_window(
+            &ctx,
+            &mut self.probe,
+            &mut self.hemisphere.shown,
+            windows_area,
+        );
+        hemisphere_view::hemisphere_window(
+            &ctx,
+            &mut self.hemisphere,
+            self.probe.pixel,
+            self.sent.settings.terms,
+            windows_area,
+        );
         script::bench_step(self, &ctx, &snapshot, started);
         self.sync_renderer();
         split::sync(self, &ctx);

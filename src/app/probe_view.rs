@@ -411,8 +411,14 @@ pub fn role_colour(role: RayRole) -> egui::Color32 {
     egui::Color32::from_rgb(r, g, b)
 }
 
-/// The probe's window; closing it ends the probe.
-pub fn probe_window(ctx: &egui::Context, probe: &mut ProbeState) {
+/// The probe's window, within `area` (off a lesson's texts); closing it
+/// ends the probe. `integral_shown` shows the integral at p beside it.
+pub fn probe_window(
+    ctx: &egui::Context,
+    probe: &mut ProbeState,
+    integral_shown: &mut bool,
+    area: egui::Rect,
+) {
     let Some((x, y)) = probe.pixel else {
         return;
     };
@@ -420,11 +426,19 @@ pub fn probe_window(ctx: &egui::Context, probe: &mut ProbeState) {
     egui::Window::new("Pixel probe")
         .id(egui::Id::unique(PROBE_WINDOW_ID))
         .open(&mut open)
-        .default_pos(ctx.content_rect().right_top() + egui::vec2(-380.0, 40.0))
+        .default_pos(area.right_top() + egui::vec2(-380.0, 8.0))
         .default_width(340.0)
+        .constrain_to(area)
+        .max_height(area.height() - 16.0)
         .resizable(true)
         .show(ctx, |ui| {
-            ui.label(format!("pixel ({x}, {y})"));
+            ui.horizontal(|ui| {
+                ui.label(format!("pixel ({x}, {y})"));
+                ui.checkbox(integral_shown, "the integral at p")
+                    .on_hover_text(
+                        "The integrand over the hemisphere at the point this pixel sees",
+                    );
+            });
             let Some(result) = probe.result.clone() else {
                 ui.spinner();
                 return;

@@ -88,7 +88,8 @@ fn is_final(app: &LumiereApp, ctx: &egui::Context, snapshot: &Snapshot) -> bool 
     let caught_up = app
         .noise_view
         .is_current(app.state.noise, snapshot.generation)
-        && app.probe.is_settled(snapshot.samples_per_pixel());
+        && app.probe.is_settled(snapshot.samples_per_pixel())
+        && app.hemisphere.is_settled(&app.sent, app.probe.pixel);
     if !caught_up {
         ctx.request_repaint_after(std::time::Duration::from_millis(20));
     }

@@ -65,6 +65,7 @@ pub fn viewport(app: &mut LumiereApp, ui: &mut egui::Ui, snapshot: &Arc<Snapshot
             if let Some(bands) = &lesson_bands {
                 available = bands.image_area(available);
             }
+            app.windows_area = Some(available);
             let settings = &app.state.settings;
             let (width, height) = (settings.width, settings.height);
             let four_up = four_up_view::active(app).then(|| {

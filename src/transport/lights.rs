@@ -295,6 +295,16 @@ impl LightTable {
         found.ok().map(|at| self.triangle_light[at].1)
     }
 
+    /// Light index of accel sphere `sphere`.
+    pub fn light_of_sphere(&self, sphere: u32) -> u32 {
+        self.sphere_light[sphere as usize]
+    }
+
+    /// The source light `light` belongs to, as the user names it.
+    pub fn source_of(&self, light: usize) -> SourceKey {
+        self.sources[light]
+    }
+
     /// Whether scene triangle `triangle` stopped being geometry (an emitter
     /// collapsed to a point light).
     pub fn is_hidden(&self, triangle: u32) -> bool {

@@ -1,0 +1,87 @@
+//! The map of the hemisphere as a picture: one factor of the integrand in
+//! false colour (the noise views' sequential map), on a linear or a log
+//! scale, with the range its colour bar states. Outside the disk, where
+//! there is no direction, the picture is transparent.
+
+use super::hemisphere::{Factor, IntegrandMap};
+use super::noise::{ColourMap, Scale};
+
+/// Decades a log scale shows below the largest value.
+pub const LOG_DECADES: f32 = 4.0;
+
+/// One factor of a map, coloured.
+#[derive(Clone, Debug)]
+pub struct ColouredMap {
+    pub size: u32,
+    /// sRGBA bytes, rows from the top.
+    pub srgba: Vec<u8>,
+    /// The values at the two ends of the colour bar (in the factor's unit).
+    pub range: (f32, f32),
+    pub scale: Scale,
+    pub factor: Factor,
+}
+
+impl ColouredMap {
+    /// The value at `position` ∈ [0, 1] along the bar.
+    pub fn value_at(&self, position: f32) -> f32 {
+        let (low, high) = self.range;
+        match self.scale {
+            Scale::Linear => low + position * (high - low),
+            Scale::Log => low * (high / low).powf(position),
+        }
+    }
+
+    /// The position along the bar of `value` (clamped to [0, 1]).
+    pub fn position_of(&self, value: f32) -> f32 {
+        let (low, high) = self.range;
+        let t = match self.scale {
+            Scale::Linear if high > low => (value - low) / (high - low),
+            Scale::Linear => 0.0,
+            Scale::Log if value > 0.0 => (value / low).log10() / (high / low).log10(),
+            Scale::Log => 0.0,
+        };
+        t.clamp(0.0, 1.0)
+    }
+}
+
+/// `factor` of `map` in false colour: from 0 to the largest value
+/// (linear), or over [`LOG_DECADES`] decades below it (log; zero shows as
+/// the bottom colour).
+pub fn colour_map(map: &IntegrandMap, factor: Factor, scale: Scale) -> ColouredMap {
+    let values = map.layer(factor);
+    let size = map.size;
+    let inside: Vec<bool> = (0..size * size)
+        .map(|i| {
+            let centre = IntegrandMap::disk_point(size, i % size, i / size, glam::Vec2::splat(0.5));
+            centre.length() <= 1.0
+        })
+        .collect();
+    let high = values
+        .iter()
+        .zip(&inside)
+        .filter(|(_, inside)| **inside)
+        .map(|(v, _)| *v)
+        .fold(0.0f32, f32::max);
+    let high = if high > 0.0 { high } else { 1.0 };
+    let range = match scale {
+        Scale::Linear => (0.0, high),
+        Scale::Log => (high * 10f32.powf(-LOG_DECADES), high),
+    };
+    let mut coloured = ColouredMap {
+        size,
+        srgba: Vec::with_capacity(values.len() * 4),
+        range,
+        scale,
+        factor,
+    };
+    for (value, inside) in values.iter().zip(&inside) {
+        if !inside {
+            coloured.srgba.extend([0, 0, 0, 0]);
+            continue;
+        }
+        let [r, g, b] = ColourMap::Sequential.srgb(coloured.position_of(*value));
+        let byte = |c: f32| (c.clamp(0.0, 1.0) * 255.0).round() as u8;
+        coloured.srgba.extend([byte(r), byte(g), byte(b), 255]);
+    }
+    coloured
+}

@@ -1,0 +1,220 @@
+//! The integral at p in the viewer: a probe click opens the view of the
+//! integrand over the hemisphere at the pixel's first hit, it follows the
+//! term asked for, and a lesson step's probe opens it without covering the
+//! step's texts.
+#![cfg(feature = "gui")]
+
+use std::time::{Duration, Instant};
+
+use eframe::egui;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use glam::{Vec2, Vec3};
+use lumiere::analysis::hemisphere::integrand_map;
+use lumiere::app::hemisphere_view::{
+    HEMISPHERE_WINDOW_ID, HEMISPHERE_WINDOW_TITLE, MAP_SIZE, ROUNDS,
+};
+use lumiere::app::probe_view::PROBE_WINDOW_ID;
+use lumiere::app::{LumiereApp, ViewOptions};
+use lumiere::lesson::{Lang, Lesson};
+use lumiere::{RenderContext, RenderSettings, Term, TermSet};
+
+#[path = "common/viewer.rs"]
+mod viewer_harness;
+use viewer_harness::{harness, wait_for};
+
+fn wait_for_app(
+    harness: &mut Harness<'static, LumiereApp>,
+    what: &str,
+    done: impl Fn(&LumiereApp) -> bool,
+) {
+    let deadline = Instant::now() + Duration::from_secs(120);
+    while !done(harness.state()) {
+        assert!(Instant::now() < deadline, "timed out waiting for {what}");
+        harness.step();
+        std::thread::sleep(Duration::from_millis(10));
+    }
+}
+
+/// A short click at `pos`.
+fn click(harness: &mut Harness<'static, LumiereApp>, pos: egui::Pos2) {
+    let button = |pressed| egui::Event::PointerButton {
+        pos,
+        button: egui::PointerButton::Primary,
+        pressed,
+        modifiers: egui::Modifiers::default(),
+    };
+    harness.event(egui::Event::PointerMoved(pos));
+    harness.step();
+    harness.event(button(true));
+    harness.step();
+    harness.event(button(false));
+    harness.run_steps(2);
+}
+
+/// The map the view shows for `term` at `pixel` is the one `analysis`
+/// computes for the pixel-centre ray, round after round up to the last.
+fn assert_shows_the_map(harness: &mut Harness<'static, LumiereApp>, pixel: (u32, u32), term: Term) {
+    wait_for_app(harness, "the last round of the map", |app| {
+        app.hemisphere
+            .result
+            .as_ref()
+            .is_some_and(|r| r.pixel() == pixel && r.term() == term && r.is_final())
+    });
+    harness.run_steps(2);
+    harness.get_by_label(HEMISPHERE_WINDOW_TITLE);
+    let app = harness.state();
+    let result = app.hemisphere.result.clone().unwrap();
+    let outcome = result.outcome.as_ref().expect("a map at p");
+    assert_eq!(outcome.map.directions_per_pixel, *ROUNDS.last().unwrap());
+    let settings = RenderSettings {
+        terms: TermSet::ALL,
+        auto_indirect_samples: false,
+        ..app.state.settings.clone()
+    };
+    let context = RenderContext::with_camera(
+        std::sync::Arc::clone(&app.scene),
+        settings.clone(),
+        Some(&app.camera),
+    );
+    let ray = context.camera.generate(pixel.0, pixel.1, Vec2::splat(0.5));
+    let expected = integrand_map(
+        &context,
+        &ray,
+        TermSet::only(term),
+        MAP_SIZE,
+        outcome.map.directions_per_pixel,
+        settings.seed,
+    )
+    .unwrap();
+    assert_eq!(
+        outcome.map.values, expected.values,
+        "the view's map is the analysis'"
+    );
+    assert!(luminance_sum(&outcome.map.values) > 0.0);
+}
+
+fn luminance_sum(values: &[Vec3]) -> f32 {
+    values.iter().map(|v| v.x + v.y + v.z).sum()
+}
+
+#[test]
+fn a_probe_click_opens_the_integral_at_p_for_the_term_asked() {
+    let mut harness = harness();
+    harness.state_mut().state.stop_at_spp = Some(4);
+    wait_for(&mut harness, "4 spp", |s| {
+        s.idle && s.samples_per_pixel() >= 4
+    });
+    assert!(harness.query_by_label(HEMISPHERE_WINDOW_TITLE).is_none());
+    harness.get_by_label("Probe").click();
+    harness.run_steps(2);
+    let rect = harness.state().image_rect().expect("the image is drawn");
+    click(
+        &mut harness,
+        rect.min + egui::vec2(rect.width() * 0.5, rect.height() * 0.3),
+    );
+    let pixel = harness.state().probe.pixel.expect("a pixel is probed");
+    // L0, L1 and L2 are shown: the view integrates L1, the lowest integral term
+    assert_shows_the_map(&mut harness, pixel, Term::L1);
+    let domains = harness
+        .state()
+        .hemisphere
+        .result
+        .as_ref()
+        .unwrap()
+        .outcome
+        .as_ref()
+        .unwrap()
+        .domains
+        .clone();
+    assert_eq!(domains.names, ["light"], "the light's domain is on the map");
+    // L2 asked for: the map of one indirect bounce, zero where the light is seen
+    // the window's L2, after the Terms group's
+    harness
+        .get_all_by_label("L2")
+        .last()
+        .expect("the window's L2")
+        .click();
+    harness.run_steps(2);
+    assert_shows_the_map(&mut harness, pixel, Term::L2);
+    let result = harness.state().hemisphere.result.clone().unwrap();
+    let map = &result.outcome.as_ref().unwrap().map;
+    let size = MAP_SIZE as usize;
+    let inside = |i: usize| domains.source[i].is_some() && domains.visible[i];
+    let interior: Vec<usize> = (size + 1..size * size - size - 1)
+        .filter(|&i| {
+            [i, i - 1, i + 1, i - size, i + size]
+                .into_iter()
+                .all(inside)
+        })
+        .collect();
+    assert!(!interior.is_empty(), "the light covers pixels of the map");
+    assert!(
+        interior.iter().all(|&i| map.values[i] == Vec3::ZERO),
+        "L2 inside Ω_s"
+    );
+    // closed from its window, reopened from the probe's
+    let hemisphere_rect = harness
+        .ctx
+        .memory(|m| m.area_rect(egui::Id::unique(HEMISPHERE_WINDOW_ID)))
+        .unwrap();
+    click(
+        &mut harness,
+        hemisphere_rect.right_top() + egui::vec2(-14.0, 14.0),
+    );
+    assert!(
+        !harness.state().hemisphere.shown,
+        "the window's close button hides the view"
+    );
+    assert!(harness.query_by_label(HEMISPHERE_WINDOW_TITLE).is_none());
+    harness.get_by_label("the integral at p").click();
+    harness.run_steps(2);
+    assert!(harness.state().hemisphere.shown);
+}
+
+/// Step 25 of the built-in lesson probes a pixel of the floor with only L2
+/// shown: the view opens on L2, and neither window covers the step's
+/// title, formula or caption.
+#[test]
+fn a_lesson_steps_probe_opens_the_view_beside_its_texts() {
+    let (width, height) = (64, 48);
+    let lesson = Lesson::load("simulation-notions").expect("the built-in lesson");
+    let index = lesson
+        .steps
+        .iter()
+        .position(|s| s.settings.probe.is_some())
+        .expect("a step probes a pixel");
+    let options = ViewOptions {
+        settings: RenderSettings {
+            width,
+            height,
+            ..RenderSettings::default()
+        },
+        lesson: Some(lesson.clone()),
+        step: index,
+        lang: Lang::Fr,
+        ..ViewOptions::default()
+    };
+    let mut harness = Harness::builder()
+        .with_size([1100.0, 800.0])
+        .wgpu()
+        .build_eframe(|cc| LumiereApp::new(cc, options).expect("the lesson opens"));
+    harness.run_steps(2);
+    let view = lesson.view(index, width, height).unwrap();
+    let pixel = view.probe.expect("the step's probe");
+    assert_eq!(harness.state().probe.pixel, Some(pixel));
+    let term = harness.state().hemisphere.term_for(view.settings.terms);
+    assert_shows_the_map(&mut harness, pixel, term);
+    harness.run_steps(3);
+    let area = harness.state().windows_area().expect("the image's area");
+    for id in [PROBE_WINDOW_ID, HEMISPHERE_WINDOW_ID] {
+        let rect = harness
+            .ctx
+            .memory(|m| m.area_rect(egui::Id::unique(id)))
+            .expect("the window is shown");
+        assert!(
+            area.expand(0.5).contains_rect(rect),
+            "{id}: {rect:?} leaves {area:?}, over the step's texts"
+        );
+    }
+}
