@@ -443,3 +443,96 @@ fn cli_refuses_what_has_no_map_naming_the_problem() {
         "Dirac",
     );
 }
+
+/// The samples drawn at p are the film's own: pass by pass the term's value
+/// is what `sample_pixel` gives with the film's random streams, and the
+/// directions' values sum to it. With MIS both strategies draw, each
+/// direction with its weight in [0, 1]; each strategy's density is a
+/// density over the directions it can draw.
+#[test]
+fn the_samples_drawn_at_p_are_the_estimators_own() {
+    use lumiere::analysis::strategy_samples::{Strategy, drawn_samples, strategy_density};
+    use lumiere::render::sample_stream;
+    use lumiere::transport::counts::RayCounts;
+    use lumiere::transport::sample_pixel;
+    let settings = RenderSettings {
+        width: WIDTH,
+        height: HEIGHT,
+        auto_indirect_samples: false,
+        ..RenderSettings::default()
+    };
+    let cornell = RenderContext::new(builtin::load("cornell").unwrap(), settings.clone());
+    let (x, y) = (32, 15);
+    let ray = pixel_ray(&cornell, x, y);
+    let p = ShadingPoint::seen(&cornell, &ray).unwrap();
+    for term in [Term::L1, Term::L2] {
+        let drawn = drawn_samples(&cornell, &p, (x, y), term, 64);
+        assert_eq!(drawn.per_pass.len(), 64);
+        for (pass, value) in drawn.per_pass.iter().enumerate() {
+            let stream = sample_stream(&settings, (y * WIDTH + x) as u64, pass as u32);
+            let film = sample_pixel(
+                &cornell,
+                x,
+                y,
+                &stream,
+                settings.terms,
+                &mut RayCounts::default(),
+            );
+            assert_eq!(*value, film[term.index()], "{term:?}, pass {pass}");
+            let sum: Vec3 = drawn
+                .first(pass as u32 + 1)
+                .filter(|s| s.pass == pass as u32)
+                .map(|s| s.value)
+                .sum();
+            assert!(
+                (sum - *value).abs().max_element() <= 1e-5 * value.max_element().max(1e-3),
+                "{term:?}, pass {pass}: {sum} vs {value}"
+            );
+        }
+        let estimates = drawn.running_estimate();
+        assert_eq!(
+            estimates.iter().map(|e| e.n).collect::<Vec<_>>(),
+            [1, 2, 4, 8, 16, 32, 64]
+        );
+        let last = estimates.last().unwrap();
+        assert!(
+            (last.mean - luminance(drawn.mean()) as f64).abs() < 1e-6 && last.standard_error > 0.0
+        );
+    }
+    let l1 = drawn_samples(&cornell, &p, (x, y), Term::L1, 1024);
+    let (light, directions): (
+        Vec<&lumiere::analysis::strategy_samples::DrawnSample>,
+        Vec<_>,
+    ) = l1
+        .samples
+        .iter()
+        .partition(|s| s.strategy == Strategy::Light);
+    assert!(
+        light.len() >= 1000 && directions.len() >= 1000,
+        "MIS draws by both: {} and {}",
+        light.len(),
+        directions.len()
+    );
+    assert!(l1.samples.iter().all(|s| (0.0..=1.0).contains(&s.weight)));
+    // the light is small: its light samples weigh nearly one, the BRDF's
+    // directions that find it little
+    let found: Vec<_> = directions.iter().filter(|s| s.reached_light).collect();
+    assert!(
+        !found.is_empty() && found.iter().all(|s| s.weight < 0.5),
+        "{found:?}"
+    );
+    assert!(light.iter().all(|s| s.weight > 0.5));
+    // densities: the directions' integrates to one over Ω⁺, the light's is
+    // zero away from the light
+    let size = 64;
+    let pixel_solid_angle = 2.0 * (2.0 / size as f32).powi(2);
+    let brdf = strategy_density(&cornell, &p, Term::L1, Strategy::Directions, size);
+    let total: f32 = brdf.iter().sum::<f32>() * pixel_solid_angle;
+    assert!((total - 1.0).abs() < 0.03, "∫ pdf dω = {total}");
+    let towards_light = strategy_density(&cornell, &p, Term::L1, Strategy::Light, size);
+    let lit = towards_light.iter().filter(|&&d| d > 0.0).count();
+    assert!(
+        lit > 0 && lit < (size * size / 10) as usize,
+        "{lit} pixels of light density"
+    );
+}

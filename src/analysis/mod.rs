@@ -12,3 +12,4 @@ pub mod metrics;
 pub mod noise;
 pub mod path_view;
 pub mod probe;
+pub mod strategy_samples;

@@ -309,16 +309,16 @@ impl<'a> Walk<'a> {
     ) -> Option<Vertex> {
         let counted = weight != EmissionWeight::Zero && self.terms.contains(term);
         let Some(hit) = self.accel().closest_hit(&ray) else {
-            self.tally.escaped(&ray, kind, term);
+            self.tally.escaped(&ray, kind, term, counted.then_some(0.0));
             return None;
         };
-        let mut emitted = Vec3::ZERO;
+        let (mut emitted, mut counted_weight) = (Vec3::ZERO, 0.0);
         let vertex = match hit {
             // sphere lights are pure emitters: the path ends here
             Hit::Sphere { sphere, .. } => {
                 if counted {
                     let (le, w) = self.sphere_emission(sphere, ray.direction, weight);
-                    emitted = throughput * le * w;
+                    (emitted, counted_weight) = (throughput * le * w, w);
                 }
                 None
             }
@@ -327,7 +327,7 @@ impl<'a> Walk<'a> {
                 let wo = -ray.direction;
                 if counted {
                     let (le, w) = self.triangle_emission(&point, wo, weight);
-                    emitted = throughput * le * w;
+                    (emitted, counted_weight) = (throughput * le * w, w);
                 }
                 self.vertex(point, wo, reflections)
             }
@@ -340,6 +340,7 @@ impl<'a> Walk<'a> {
             Query::ClosestHit,
             term,
             emitted,
+            counted.then_some(counted_weight),
         );
         vertex
     }
@@ -375,8 +376,9 @@ impl<'a> Walk<'a> {
         self.file_under(term, added);
         if self.tally.is_logging() {
             let accel = self.accel();
+            let counted = (weight != EmissionWeight::Zero).then_some(w);
             self.tally
-                .light_search_segment(accel, ray, kind, term, le, added);
+                .light_search_segment(accel, ray, kind, term, (le, counted), added);
         }
     }
 
@@ -527,19 +529,19 @@ impl<'a> Walk<'a> {
         let occluded = self
             .accel()
             .occluded(&light.shadow_ray, light.target_sphere);
+        let weight = if light.delta || settings.light_sampling != LightSampling::Mis {
+            1.0
+        } else {
+            self.mis(light.pdf, directions * brdf_pdf)
+        };
         let mut added = Vec3::ZERO;
         if !occluded {
-            let weight = if light.delta || settings.light_sampling != LightSampling::Mis {
-                1.0
-            } else {
-                self.mis(light.pdf, directions * brdf_pdf)
-            };
             added = contribution * weight;
             self.file_under(vertex.term, added);
         }
         let (ray, target_sphere) = (light.shadow_ray, light.target_sphere);
         self.tally
-            .shadow_ray(&ray, occluded, target_sphere, vertex.term, added);
+            .shadow_ray(&ray, occluded, target_sphere, vertex.term, added, weight);
     }
 
     /// One direction gathered at `vertex` (traced on its own), counted if it finds a light.

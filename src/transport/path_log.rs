@@ -42,6 +42,10 @@ pub struct PathSegment {
     pub term: Term,
     /// The radiance it added to `term` (zero if none).
     pub radiance: Vec3,
+    /// The weight the emission it met was counted with (the MIS weight, or
+    /// 1; 0 if it met none); `None`: another strategy counts what it meets.
+    /// A shadow ray's is its light sample's weight, hidden or not.
+    pub weight: Option<f32>,
 }
 
 /// What a traced ray was for.

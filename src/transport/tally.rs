@@ -112,6 +112,7 @@ impl<'a> Tally<'a> {
         target_sphere: Option<u32>,
         term: Term,
         added: Vec3,
+        weight: f32,
     ) {
         self.counts.shadow += 1;
         self.counts.per_term[term.index()] += 1;
@@ -119,7 +120,8 @@ impl<'a> Tally<'a> {
             occluded,
             target_sphere,
         };
-        self.segment(ray, ray.at(ray.t_max), kind, Query::Occlusion, term, added);
+        let to = ray.at(ray.t_max);
+        self.segment(ray, to, kind, Query::Occlusion, term, added, Some(weight));
     }
 
     // ── work skipped
@@ -168,8 +170,10 @@ impl<'a> Tally<'a> {
         self.log.is_some()
     }
 
-    /// One traced ray, from its origin to `to`, that added `radiance` to `term`.
+    /// One traced ray, from its origin to `to`, that added `radiance` to
+    /// `term`, any emission it met counted with `weight` (None: not counted).
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
     pub fn segment(
         &mut self,
         ray: &Ray,
@@ -178,6 +182,7 @@ impl<'a> Tally<'a> {
         query: Query,
         term: Term,
         radiance: Vec3,
+        weight: Option<f32>,
     ) {
         if let Some(log) = self.log.as_deref_mut() {
             log.segments.push(PathSegment {
@@ -188,17 +193,18 @@ impl<'a> Tally<'a> {
                 query,
                 term,
                 radiance,
+                weight,
             });
         }
     }
 
     /// A closest-hit ray that left the scene (it added nothing).
     #[cold]
-    pub fn escaped(&mut self, ray: &Ray, kind: SegmentKind, term: Term) {
+    pub fn escaped(&mut self, ray: &Ray, kind: SegmentKind, term: Term, weight: Option<f32>) {
         self.counts.escaped += 1;
         if self.log.is_some() {
             let to = self.escape_point(ray);
-            self.segment(ray, to, kind, Query::ClosestHit, term, Vec3::ZERO);
+            self.segment(ray, to, kind, Query::ClosestHit, term, Vec3::ZERO, weight);
         }
     }
 
@@ -212,7 +218,7 @@ impl<'a> Tally<'a> {
         ray: &Ray,
         kind: SegmentKind,
         term: Term,
-        le: Vec3,
+        (le, weight): (Vec3, Option<f32>),
         added: Vec3,
     ) {
         let to = match accel.closest_hit(ray) {
@@ -225,7 +231,7 @@ impl<'a> Tally<'a> {
             },
             other => other,
         };
-        self.segment(ray, to, kind, Query::VisibleEmitter, term, added);
+        self.segment(ray, to, kind, Query::VisibleEmitter, term, added, weight);
     }
 
     /// Where the drawing of a ray that left the scene stops: one scene diagonal away.

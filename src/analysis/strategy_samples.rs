@@ -1,0 +1,305 @@
+//! Where the estimator puts its samples at p: the directions the render's
+//! own samples of a pixel take from its first hit, read from their path
+//! logs (the same random streams as the film's), each with its strategy,
+//! its value and its MIS weight; the running estimate as N grows; and
+//! each strategy's density over the hemisphere, to lay over the map.
+//!
+//! For L1 the samples are the light samples (a shadow ray towards a point
+//! drawn on a light: *light* strategy) and the directions drawn by the
+//! BRDF or uniformly that look for a light (*directions* strategy); with
+//! MIS each carries its weight, and the two kinds of a sample sum to its
+//! value. For L2 and beyond they are p's continuations, each with the
+//! radiance its path brought to the term.
+
+use glam::{Vec2, Vec3};
+
+use crate::course::color::luminance;
+use crate::course::{IndirectSampling, LightSampling, Term, TermSet};
+use crate::geometry::accel::Hit;
+use crate::render::sample_stream;
+use crate::transport::context::RenderContext;
+use crate::transport::counts::RayCounts;
+use crate::transport::path_log::SegmentKind;
+use crate::transport::sample_pixel_logged;
+use crate::transport::surface::SurfacePoint;
+use crate::transport::warps::{UNIFORM_HEMISPHERE_PDF, cosine_hemisphere_pdf};
+
+use super::hemisphere::{IntegrandMap, ShadingPoint, direction_to_disk, disk_to_direction};
+
+/// How a sample's direction was drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Strategy {
+    /// A point drawn on a light (next-event estimation).
+    Light,
+    /// A direction drawn on the hemisphere (by the BRDF, by cos θ or uniformly).
+    Directions,
+}
+
+/// One direction a sample took from p.
+#[derive(Clone, Copy, Debug)]
+pub struct DrawnSample {
+    /// The sample (pass) it belongs to.
+    pub pass: u32,
+    /// In p's frame, and on the map.
+    pub direction: Vec3,
+    pub disk: Vec2,
+    pub strategy: Strategy,
+    /// What it added to the term's sample (weighted, W/m²/sr).
+    pub value: Vec3,
+    /// Its MIS weight (1 without MIS).
+    pub weight: f32,
+    /// Whether it reached a light (a shadow ray unblocked, a direction that met one).
+    pub reached_light: bool,
+}
+
+/// The samples of a pixel at its first hit, for one term.
+#[derive(Clone, Debug)]
+pub struct DrawnSamples {
+    pub term: Term,
+    pub samples: Vec<DrawnSample>,
+    /// The term's value of each sample, pass by pass (what the film adds).
+    pub per_pass: Vec<Vec3>,
+    /// How each strategy draws here, in words (`None`: not used).
+    pub light: Option<&'static str>,
+    pub directions: Option<&'static str>,
+}
+
+/// The mean of the first `n` samples and its standard error.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RunningEstimate {
+    pub n: u32,
+    pub mean: f64,
+    pub standard_error: f64,
+}
+
+impl DrawnSamples {
+    /// The term's mean over all the samples.
+    pub fn mean(&self) -> Vec3 {
+        self.per_pass.iter().sum::<Vec3>() / self.per_pass.len().max(1) as f32
+    }
+
+    /// The samples of the first `n` passes.
+    pub fn first(&self, n: u32) -> impl Iterator<Item = &DrawnSample> {
+        self.samples.iter().filter(move |s| s.pass < n)
+    }
+
+    /// The luminance of the estimate after 1, 2, 4, … samples, with its
+    /// standard error (from the samples' own variance).
+    pub fn running_estimate(&self) -> Vec<RunningEstimate> {
+        let mut estimates = Vec::new();
+        let (mut sum, mut sum2) = (0.0f64, 0.0f64);
+        let mut next = 1usize;
+        for (k, value) in self.per_pass.iter().enumerate() {
+            let y = luminance(*value) as f64;
+            (sum, sum2) = (sum + y, sum2 + y * y);
+            let n = k + 1;
+            if n == next || n == self.per_pass.len() {
+                let mean = sum / n as f64;
+                let variance = if n > 1 {
+                    ((sum2 - n as f64 * mean * mean) / (n as f64 - 1.0)).max(0.0)
+                } else {
+                    0.0
+                };
+                estimates.push(RunningEstimate {
+                    n: n as u32,
+                    mean,
+                    standard_error: (variance / n as f64).sqrt(),
+                });
+                next *= 2;
+            }
+        }
+        estimates.dedup_by_key(|e| e.n);
+        estimates
+    }
+}
+
+/// The first `passes` samples of pixel (`x`, `y`), as the film draws them
+/// with `context` (its settings, continuations and random streams), seen
+/// from p, the first hit of the pixel's centre: the directions they take
+/// from their first hit for `term` (L1, L2 or L3+). A sample's first hit
+/// lies within the pixel's footprint around p.
+pub fn drawn_samples(
+    context: &RenderContext,
+    p: &ShadingPoint,
+    (x, y): (u32, u32),
+    term: Term,
+    passes: u32,
+) -> DrawnSamples {
+    let settings = &context.settings;
+    let pixel = y as u64 * settings.width as u64 + x as u64;
+    let mut samples = Vec::new();
+    let mut per_pass = Vec::with_capacity(passes as usize);
+    for pass in 0..passes {
+        let stream = sample_stream(settings, pixel, pass);
+        let mut log = crate::transport::path_log::PathLog::default();
+        let radiance =
+            sample_pixel_logged(context, x, y, &stream, &mut RayCounts::default(), &mut log);
+        per_pass.push(radiance[term.index()]);
+        let mut add = |direction: Vec3, strategy, value, weight, reached_light| {
+            let local = p.frame.to_local(direction.normalize());
+            if local.z > 0.0 {
+                samples.push(DrawnSample {
+                    pass,
+                    direction: local,
+                    disk: direction_to_disk(local),
+                    strategy,
+                    value,
+                    weight,
+                    reached_light,
+                });
+            }
+        };
+        if term == Term::L1 {
+            for segment in log.segments.iter().filter(|s| s.term == Term::L1) {
+                let Some(weight) = segment.weight else {
+                    continue; // a continuation whose emission another strategy counts
+                };
+                let (strategy, reached) = match segment.kind {
+                    SegmentKind::Camera => continue,
+                    SegmentKind::Shadow { occluded, .. } => (Strategy::Light, !occluded),
+                    SegmentKind::Gather { hit_light } => (Strategy::Directions, hit_light),
+                    SegmentKind::Bounce { .. } => {
+                        (Strategy::Directions, segment.radiance.max_element() > 0.0)
+                    }
+                };
+                add(
+                    segment.ray.direction,
+                    strategy,
+                    segment.radiance,
+                    weight,
+                    reached,
+                );
+            }
+        } else {
+            // p's continuations (their ray is filed under L1, the term of
+            // the vertex they leave), each with what its path brought to `term`
+            let mut current: Option<(Vec3, Vec3)> = None;
+            for segment in &log.segments {
+                let leaves_p =
+                    matches!(segment.kind, SegmentKind::Bounce { .. }) && segment.term == Term::L1;
+                if leaves_p {
+                    if let Some((direction, value)) = current.take() {
+                        add(
+                            direction,
+                            Strategy::Directions,
+                            value,
+                            1.0,
+                            value.max_element() > 0.0,
+                        );
+                    }
+                    current = Some((segment.ray.direction, Vec3::ZERO));
+                } else if segment.term == term
+                    && let Some((_, value)) = current.as_mut()
+                {
+                    *value += segment.radiance;
+                }
+            }
+            if let Some((direction, value)) = current {
+                add(
+                    direction,
+                    Strategy::Directions,
+                    value,
+                    1.0,
+                    value.max_element() > 0.0,
+                );
+            }
+        }
+    }
+    let (light, directions) = strategies(context, term);
+    DrawnSamples {
+        term,
+        samples,
+        per_pass,
+        light,
+        directions,
+    }
+}
+
+/// How each strategy draws for `term` under the context's settings.
+fn strategies(context: &RenderContext, term: Term) -> (Option<&'static str>, Option<&'static str>) {
+    let settings = &context.settings;
+    if term != Term::L1 {
+        let directions = match settings.indirect_sampling {
+            IndirectSampling::Uniform => "uniform on the hemisphere",
+            IndirectSampling::Cosine => "by cos θ",
+            IndirectSampling::Brdf => "by the BRDF",
+        };
+        return (None, Some(directions));
+    }
+    match settings.light_sampling {
+        LightSampling::Area => (Some("points on the lights, by area"), None),
+        LightSampling::SolidAngle => (Some("by the lights' solid angle"), None),
+        LightSampling::Brdf => (None, Some("by the BRDF")),
+        LightSampling::Hemisphere => (None, Some("uniform on the hemisphere")),
+        LightSampling::Mis => (Some("points on the lights, by area"), Some("by the BRDF")),
+    }
+}
+
+/// The density (1/sr) with which `strategy` draws each pixel centre's
+/// direction of a `size`×`size` map at p, for `term`: the light strategy's
+/// through the light the direction meets (behind any occluder; a point
+/// light has no density), the directions strategy's from its distribution.
+pub fn strategy_density(
+    context: &RenderContext,
+    p: &ShadingPoint,
+    term: Term,
+    strategy: Strategy,
+    size: u32,
+) -> Vec<f32> {
+    let settings = &context.settings;
+    let directions = if term == Term::L1 {
+        match settings.light_sampling {
+            LightSampling::Hemisphere => IndirectSampling::Uniform,
+            _ => IndirectSampling::Brdf,
+        }
+    } else {
+        settings.indirect_sampling
+    };
+    (0..size * size)
+        .map(|i| {
+            let centre = IntegrandMap::disk_point(size, i % size, i / size, Vec2::splat(0.5));
+            let Some(w_local) = disk_to_direction(centre) else {
+                return 0.0;
+            };
+            match strategy {
+                Strategy::Directions => match directions {
+                    IndirectSampling::Uniform => UNIFORM_HEMISPHERE_PDF,
+                    IndirectSampling::Cosine => cosine_hemisphere_pdf(w_local.z),
+                    IndirectSampling::Brdf => p.brdf.pdf(p.wo_local, w_local),
+                },
+                Strategy::Light => light_density(context, p, w_local),
+            }
+        })
+        .collect()
+}
+
+/// Surfaces a density ray goes through, at most, to the light behind.
+const MOST_OCCLUDERS: u32 = 64;
+
+/// The light-sampling density of direction `w_local` at p.
+fn light_density(context: &RenderContext, p: &ShadingPoint, w_local: Vec3) -> f32 {
+    let (scene, lights) = (&context.scene, &context.lights);
+    let w = p.frame.to_world(w_local).normalize();
+    let mut ray = p.point.spawn_ray(w);
+    for _ in 0..MOST_OCCLUDERS {
+        match context.accel.closest_hit(&ray) {
+            None => return 0.0,
+            Some(Hit::Sphere { sphere, .. }) => {
+                return lights.sphere_emission(sphere, p.point.p, w).1;
+            }
+            Some(Hit::Triangle { triangle, b, .. }) => {
+                let point = SurfacePoint::new(scene, triangle, b);
+                if lights.light_of_triangle(triangle).is_some() {
+                    return lights.pdf_triangle(scene, p.point.p, triangle, &point);
+                }
+                ray = point.spawn_ray(w);
+            }
+        }
+    }
+    0.0
+}
+
+/// The terms the samples' context renders: the view's, and `term`.
+pub fn sampled_terms(shown: TermSet, term: Term) -> TermSet {
+    shown.with(term, true)
+}
