@@ -125,9 +125,32 @@ fn a_probe_click_opens_the_integral_at_p_for_the_term_asked() {
         .outcome
         .as_ref()
         .unwrap()
+        .at_point
         .domains
         .clone();
     assert_eq!(domains.names, ["light"], "the light's domain is on the map");
+    // the samples drawn at p are the film's: over the film's 4 samples
+    // their mean is the probe's, to rounding
+    wait_for_app(&mut harness, "the probe", |app| app.probe.result.is_some());
+    let probe = harness.state().probe.result.clone().unwrap();
+    let probed = probe
+        .probe
+        .terms
+        .iter()
+        .find(|t| t.term == Term::L1)
+        .unwrap();
+    let computed = harness.state().hemisphere.result.clone().unwrap();
+    let drawn = &computed.outcome.as_ref().unwrap().at_point.drawn;
+    let first: Vec<f32> = drawn.per_pass[..4]
+        .iter()
+        .map(|v| lumiere::course::color::luminance(*v))
+        .collect();
+    let mean = first.iter().sum::<f32>() as f64 / 4.0;
+    assert!(
+        (mean - probed.mean_luminance()).abs() <= 1e-5 * mean.abs().max(1e-6),
+        "drawn {mean} vs probed {}",
+        probed.mean_luminance()
+    );
     // L2 asked for: the map of one indirect bounce, zero where the light is seen
     // the window's L2, after the Terms group's
     harness

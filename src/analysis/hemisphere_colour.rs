@@ -18,7 +18,8 @@ pub struct ColouredMap {
     /// The values at the two ends of the colour bar (in the factor's unit).
     pub range: (f32, f32),
     pub scale: Scale,
-    pub factor: Factor,
+    /// The values coloured, per pixel.
+    pub values: Vec<f32>,
 }
 
 impl ColouredMap {
@@ -44,12 +45,15 @@ impl ColouredMap {
     }
 }
 
-/// `factor` of `map` in false colour: from 0 to the largest value
-/// (linear), or over [`LOG_DECADES`] decades below it (log; zero shows as
-/// the bottom colour).
+/// `factor` of `map` in false colour: see [`colour_values`].
 pub fn colour_map(map: &IntegrandMap, factor: Factor, scale: Scale) -> ColouredMap {
-    let values = map.layer(factor);
-    let size = map.size;
+    colour_values(map.layer(factor), map.size, scale)
+}
+
+/// The `values` of a `size`×`size` map of the disk in false colour: from 0
+/// to the largest value (linear), or over [`LOG_DECADES`] decades below it
+/// (log; zero shows as the bottom colour).
+pub fn colour_values(values: Vec<f32>, size: u32, scale: Scale) -> ColouredMap {
     let inside: Vec<bool> = (0..size * size)
         .map(|i| {
             let centre = IntegrandMap::disk_point(size, i % size, i / size, glam::Vec2::splat(0.5));
@@ -72,7 +76,7 @@ pub fn colour_map(map: &IntegrandMap, factor: Factor, scale: Scale) -> ColouredM
         srgba: Vec::with_capacity(values.len() * 4),
         range,
         scale,
-        factor,
+        values: Vec::new(),
     };
     for (value, inside) in values.iter().zip(&inside) {
         if !inside {
@@ -83,5 +87,6 @@ pub fn colour_map(map: &IntegrandMap, factor: Factor, scale: Scale) -> ColouredM
         let byte = |c: f32| (c.clamp(0.0, 1.0) * 255.0).round() as u8;
         coloured.srgba.extend([byte(r), byte(g), byte(b), 255]);
     }
+    coloured.values = values;
     coloured
 }

@@ -19,15 +19,20 @@ use crate::analysis::domains::{SourceDomains, source_domains};
 use crate::analysis::hemisphere::{
     Factor, HemisphereError, IntegrandMap, ShadingPoint, integrand_map,
 };
-use crate::analysis::hemisphere_colour::{ColouredMap, colour_map};
-use crate::analysis::noise::{ColourMap, Scale, Unit, format_tick};
-use crate::course::color::luminance;
+use crate::analysis::hemisphere_colour::{ColouredMap, colour_map, colour_values};
+use crate::analysis::noise::Scale;
+use crate::analysis::strategy_samples::{
+    DrawnSamples, Strategy, drawn_samples, sampled_terms, strategy_density,
+};
 use crate::course::{RenderSettings, Term, TermSet};
 use crate::platform::threads::{self, Job};
 use crate::platform::time::Instant;
 use crate::render::progressive::{SharedScene, ViewRequest};
 use crate::scene::Camera;
 use crate::transport::context::RenderContext;
+use crate::transport::continuations::Continuations;
+
+mod map_ui;
 
 /// The map's side, in pixels: each a direction stratum of 2·(2/128)² sr.
 pub const MAP_SIZE: u32 = 128;
@@ -36,6 +41,9 @@ pub const MAP_SIZE: u32 = 128;
 /// thread computes a round between two frames: it stops at the second.
 pub const ROUNDS: [u32; 4] = [1, 4, 16, 64];
 
+/// The film's samples of the pixel drawn at p, at most (the view draws the first N).
+pub const MOST_DRAWN_SAMPLES: u32 = 1024;
+
 /// The window's id.
 pub const HEMISPHERE_WINDOW_ID: &str = "lumiere integral at p";
 
@@ -43,7 +51,7 @@ pub const HEMISPHERE_WINDOW_ID: &str = "lumiere integral at p";
 pub const HEMISPHERE_WINDOW_TITLE: &str = "The integral at p";
 
 /// Side of the map on screen, in points.
-const MAP_POINTS: f32 = 260.0;
+pub const MAP_POINTS: f32 = 260.0;
 
 /// What a map is computed for: two equal ones give the same map.
 #[derive(Clone, Debug, PartialEq)]
@@ -86,10 +94,36 @@ impl Computed {
 /// What a round computed.
 pub struct Outcome {
     pub map: IntegrandMap,
-    pub domains: Arc<SourceDomains>,
+    /// What the first round found and the later ones keep.
+    pub at_point: Arc<AtPoint>,
     /// p and its normal, in the scene.
     pub point: glam::Vec3,
     pub normal: glam::Vec3,
+}
+
+/// What does not change from round to round: the sources' domains, the
+/// film's samples at p and each strategy's density.
+pub struct AtPoint {
+    pub domains: SourceDomains,
+    pub drawn: DrawnSamples,
+    pub light_density: Option<Vec<f32>>,
+    pub directions_density: Option<Vec<f32>>,
+}
+
+impl AtPoint {
+    pub fn density(&self, strategy: Strategy) -> Option<&Vec<f32>> {
+        match strategy {
+            Strategy::Light => self.light_density.as_ref(),
+            Strategy::Directions => self.directions_density.as_ref(),
+        }
+    }
+}
+
+/// What the map shows: a factor of the integrand, or a strategy's density.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MapShows {
+    Factor(Factor),
+    Density(Strategy),
 }
 
 /// The view's choices and its latest map.
@@ -98,11 +132,14 @@ pub struct HemisphereView {
     pub shown: bool,
     /// The term integrated; `None`: the lowest integral term shown.
     pub term: Option<Term>,
-    pub factor: Factor,
+    pub shows: MapShows,
     pub scale: Scale,
+    /// The film's samples at p drawn over the map, and how many.
+    pub samples_shown: bool,
+    pub samples_drawn: u32,
     pub result: Option<Arc<Computed>>,
     job: Option<Job<Option<Computed>>>,
-    cache: Arc<Mutex<Option<RenderContext>>>,
+    cache: Arc<Mutex<Contexts>>,
     texture: Option<(TextureOf, egui::TextureHandle)>,
 }
 
@@ -111,8 +148,10 @@ impl Default for HemisphereView {
         Self {
             shown: true,
             term: None,
-            factor: Factor::Integrand,
+            shows: MapShows::Factor(Factor::Integrand),
             scale: Scale::Linear,
+            samples_shown: true,
+            samples_drawn: 16,
             result: None,
             job: None,
             cache: Arc::default(),
@@ -125,8 +164,16 @@ impl Default for HemisphereView {
 #[derive(Clone, Copy, PartialEq)]
 struct TextureOf {
     result: *const Computed,
-    factor: Factor,
+    shows: MapShows,
     scale: Scale,
+}
+
+/// The render contexts the rounds reuse: the map's, with every term, and
+/// the samples', the view's own.
+#[derive(Default)]
+struct Contexts {
+    map: Option<RenderContext>,
+    samples: Option<RenderContext>,
 }
 
 impl HemisphereView {
@@ -179,6 +226,7 @@ impl HemisphereView {
         ctx: &egui::Context,
         request: &ViewRequest,
         pixel: Option<(u32, u32)>,
+        continuations: &Continuations,
     ) {
         if self.job.as_ref().is_some_and(|j| j.is_finished())
             && let Some(job) = self.job.take()
@@ -193,20 +241,27 @@ impl HemisphereView {
             return; // what it computes may be stale: the next round catches up
         }
         let asked = self.asked(request, pixel);
-        let (round, domains) = match &self.result {
+        let (round, at_point) = match &self.result {
             Some(r) if r.asked == asked => {
                 if self.is_last_round(r) {
                     return;
                 }
-                let domains = r.outcome.as_ref().ok().map(|o| Arc::clone(&o.domains));
-                (r.round + 1, domains)
+                let at_point = r.outcome.as_ref().ok().map(|o| Arc::clone(&o.at_point));
+                (r.round + 1, at_point)
             }
             _ => (0, None),
         };
         let cache = Arc::clone(&self.cache);
         let repaint = super::waker::Waker::new(ctx);
+        let samples_settings = RenderSettings {
+            terms: sampled_terms(request.settings.terms, asked.term),
+            auto_indirect_samples: false,
+            ..request.settings.clone()
+        };
+        let continuations = continuations.clone();
         self.job = Some(threads::spawn("lumiere hemisphere", move || {
-            let computed = compute(asked, round, domains, &cache);
+            let samples = (samples_settings, continuations);
+            let computed = compute(asked, round, at_point, samples, &cache);
             repaint.wake();
             Some(computed)
         }));
@@ -219,10 +274,16 @@ impl HemisphereView {
         computed: &Arc<Computed>,
     ) -> Option<(egui::TextureId, ColouredMap)> {
         let outcome = computed.outcome.as_ref().ok()?;
-        let coloured = colour_map(&outcome.map, self.factor, self.scale);
+        let coloured = match self.shows {
+            MapShows::Factor(factor) => colour_map(&outcome.map, factor, self.scale),
+            MapShows::Density(strategy) => {
+                let density = outcome.at_point.density(strategy)?.clone();
+                colour_values(density, outcome.map.size, self.scale)
+            }
+        };
         let of = TextureOf {
             result: Arc::as_ptr(computed),
-            factor: self.factor,
+            shows: self.shows,
             scale: self.scale,
         };
         if self.texture.as_ref().is_none_or(|(t, _)| *t != of) {
@@ -240,46 +301,62 @@ fn rounds() -> usize {
     if threads::ONE_THREAD { 2 } else { ROUNDS.len() }
 }
 
-/// One round of the map for `asked`, with the render context kept in
-/// `cache` (rebuilt when the scene or the settings change).
+/// One round of the map for `asked`, with the render contexts kept in
+/// `cache` (rebuilt when the scene or the settings change); the first
+/// round finds what the others keep ([`AtPoint`]), the film's samples with
+/// `samples`' settings and continuations.
 fn compute(
     asked: Asked,
     round: usize,
-    domains: Option<Arc<SourceDomains>>,
-    cache: &Mutex<Option<RenderContext>>,
+    at_point: Option<Arc<AtPoint>>,
+    (samples_settings, continuations): (RenderSettings, Continuations),
+    cache: &Mutex<Contexts>,
 ) -> Computed {
     let started = Instant::now();
     let mut cache = cache.lock().unwrap_or_else(|p| p.into_inner());
-    let fresh = cache
-        .as_ref()
-        .is_some_and(|c| Arc::ptr_eq(&c.scene, &asked.scene.0) && c.settings == asked.settings);
-    if !fresh {
-        *cache = Some(RenderContext::new(
-            Arc::clone(&asked.scene.0),
-            asked.settings.clone(),
-        ));
-    }
-    let context = cache.as_mut().expect("built above");
-    context.set_camera(&asked.camera);
+    let cache = &mut *cache;
+    let context = fresh_context(&mut cache.map, &asked.scene, &asked.settings, &asked.camera);
     let (x, y) = asked.pixel;
     let ray = context.camera.generate(x, y, Vec2::splat(0.5));
     let terms = TermSet::only(asked.term);
-    let outcome = integrand_map(
+    let map = integrand_map(
         context,
         &ray,
         terms,
         MAP_SIZE,
         ROUNDS[round],
         asked.settings.seed,
-    )
-    .and_then(|map| {
+    );
+    let outcome = map.and_then(|map| {
         let p = ShadingPoint::seen(context, &ray).ok_or(HemisphereError::NoSurface)?;
-        let domains = domains.unwrap_or_else(|| Arc::new(source_domains(context, &p, MAP_SIZE)));
+        let (point, normal) = (p.point.p, p.frame.z);
+        let at_point = match at_point {
+            Some(at_point) => at_point,
+            None => {
+                let domains = source_domains(context, &p, MAP_SIZE);
+                let context = fresh_context(
+                    &mut cache.samples,
+                    &asked.scene,
+                    &samples_settings,
+                    &asked.camera,
+                );
+                context.continuations = continuations;
+                let drawn = drawn_samples(context, &p, asked.pixel, asked.term, MOST_DRAWN_SAMPLES);
+                let density =
+                    |strategy| strategy_density(context, &p, asked.term, strategy, MAP_SIZE);
+                Arc::new(AtPoint {
+                    light_density: drawn.light.map(|_| density(Strategy::Light)),
+                    directions_density: drawn.directions.map(|_| density(Strategy::Directions)),
+                    domains,
+                    drawn,
+                })
+            }
+        };
         Ok(Outcome {
             map,
-            domains,
-            point: p.point.p,
-            normal: p.frame.z,
+            at_point,
+            point,
+            normal,
         })
     });
     Computed {
@@ -288,6 +365,25 @@ fn compute(
         outcome,
         duration: started.elapsed(),
     }
+}
+
+/// The context in `slot`, rebuilt if it is not for `scene` and `settings`,
+/// looking through `camera`.
+fn fresh_context<'a>(
+    slot: &'a mut Option<RenderContext>,
+    scene: &SharedScene,
+    settings: &RenderSettings,
+    camera: &Camera,
+) -> &'a mut RenderContext {
+    let fresh = slot
+        .as_ref()
+        .is_some_and(|c| Arc::ptr_eq(&c.scene, &scene.0) && c.settings == *settings);
+    if !fresh {
+        *slot = Some(RenderContext::new(Arc::clone(&scene.0), settings.clone()));
+    }
+    let context = slot.as_mut().expect("built above");
+    context.set_camera(camera);
+    context
 }
 
 /// The window of the integral at p, while a pixel is probed and the view is
@@ -309,9 +405,11 @@ pub fn hemisphere_window(
         .default_pos(area.left_top() + egui::vec2(8.0, 8.0))
         .default_width(MAP_POINTS)
         .constrain_to(area)
+        .max_height(area.height() - 16.0)
+        .default_height(area.height() - 16.0)
         .resizable(false)
         .show(ctx, |ui| {
-            choices_ui(ui, view, visible);
+            map_ui::choices_ui(ui, view, visible);
             let Some(computed) = view.result.clone() else {
                 ui.spinner();
                 return;
@@ -327,280 +425,27 @@ pub fn hemisphere_window(
                     ui.label(format!("No map at pixel {:?}: {e}.", computed.asked.pixel));
                 }
                 Ok(outcome) => {
-                    if let Some((texture, coloured)) = view.texture(ctx, &computed) {
-                        map_ui(ui, texture, &coloured, outcome, &computed);
-                    }
-                    numbers_ui(ui, view, &computed, outcome);
+                    let height = (area.height() - 110.0).max(120.0);
+                    egui::ScrollArea::vertical()
+                        .max_height(height)
+                        .show(ui, |ui| {
+                            if let Some((texture, coloured)) = view.texture(ctx, &computed) {
+                                map_ui::map_ui(
+                                    ui,
+                                    view,
+                                    texture,
+                                    &coloured,
+                                    outcome,
+                                    computed.term(),
+                                );
+                            }
+                            map_ui::numbers_ui(ui, &computed, outcome);
+                            map_ui::samples_ui(ui, view, &computed, outcome);
+                        });
                 }
             }
         });
     if !open {
         view.shown = false;
     }
-}
-
-/// The term, the factor and the scale.
-fn choices_ui(ui: &mut egui::Ui, view: &mut HemisphereView, visible: TermSet) {
-    ui.horizontal(|ui| {
-        let shown = view.term_for(visible);
-        for term in [Term::L1, Term::L2, Term::L3Plus] {
-            if ui
-                .selectable_label(shown == term, term.label())
-                .on_hover_text(term_formula(term))
-                .clicked()
-            {
-                view.term = Some(term);
-            }
-        }
-        ui.separator();
-        egui::ComboBox::from_id_salt("hemisphere factor")
-            .selected_text(factor_label(view.factor))
-            .show_ui(ui, |ui| {
-                for factor in Factor::ALL {
-                    ui.selectable_value(&mut view.factor, factor, factor_label(factor));
-                }
-            })
-            .response
-            .on_hover_text("The integrand, or one of its factors alone");
-        ui.separator();
-        ui.selectable_value(&mut view.scale, Scale::Linear, "linear");
-        ui.selectable_value(&mut view.scale, Scale::Log, "log");
-    });
-}
-
-fn factor_label(factor: Factor) -> &'static str {
-    match factor {
-        Factor::Integrand => "L_i · f_r · cos θ",
-        Factor::Incident => "L_i alone",
-        Factor::Brdf => "f_r alone",
-        Factor::Cosine => "cos θ alone",
-    }
-}
-
-/// What the term integrates, in the lecture's words.
-pub fn term_formula(term: Term) -> &'static str {
-    match term {
-        Term::L1 => {
-            "L1(p) = ∫ over Σ Ωs of Le(q, −ω) f_r(p, ω → ωo) cos θ dω, plus each point light"
-        }
-        Term::L2 => "L2(p) = ∫ over Ω = Ω⁺ − ΩS of L_direct(q, −ω) f_r(p, ω → ωo) cos θ dω",
-        _ => "L3+(p) = ∫ over Ω⁺ of (L2 + L3+)(q, −ω) f_r(p, ω → ωo) cos θ dω",
-    }
-}
-
-/// The disk, its outlines, names and marks, and the colour bar.
-fn map_ui(
-    ui: &mut egui::Ui,
-    texture: egui::TextureId,
-    coloured: &ColouredMap,
-    outcome: &Outcome,
-    computed: &Computed,
-) {
-    let (response, painter) =
-        ui.allocate_painter(egui::vec2(MAP_POINTS, MAP_POINTS), egui::Sense::hover());
-    let rect = response.rect;
-    painter.rect_filled(rect, 0.0, egui::Color32::from_gray(24));
-    let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-    painter.image(texture, rect, uv, egui::Color32::WHITE);
-    // disk (x right, y up) → screen
-    let screen = |d: Vec2| rect.center() + egui::vec2(d.x, -d.y) * rect.width() / 2.0;
-    let rim = egui::Stroke::new(1.0, egui::Color32::from_gray(140));
-    painter.circle_stroke(rect.center(), rect.width() / 2.0, rim);
-    let outline = egui::Stroke::new(1.5, egui::Color32::WHITE);
-    for (a, b) in outcome.domains.outline() {
-        painter.line_segment([screen(a), screen(b)], outline);
-    }
-    let font = egui::FontId::proportional(12.0);
-    for label in outcome.domains.labels() {
-        let text = format!("Ω {}", label.name);
-        let at = screen(label.below) + egui::vec2(0.0, 2.0);
-        painter.text(
-            at + egui::vec2(1.0, 1.0),
-            egui::Align2::CENTER_TOP,
-            &text,
-            font.clone(),
-            egui::Color32::BLACK,
-        );
-        painter.text(
-            at,
-            egui::Align2::CENTER_TOP,
-            &text,
-            font.clone(),
-            egui::Color32::WHITE,
-        );
-    }
-    if computed.asked.term == Term::L1 {
-        // a point light below p's horizon sends nothing: it has no place on the map
-        for dirac in outcome.map.diracs.iter().filter(|d| d.direction.z > 0.0) {
-            let at = screen(dirac.disk);
-            let colour = if dirac.occluded {
-                egui::Color32::from_gray(150)
-            } else {
-                egui::Color32::from_rgb(255, 220, 80)
-            };
-            let stroke = egui::Stroke::new(2.0, colour);
-            for d in [
-                egui::vec2(6.0, 0.0),
-                egui::vec2(0.0, 6.0),
-                egui::vec2(4.0, 4.0),
-                egui::vec2(4.0, -4.0),
-            ] {
-                painter.line_segment([at - d, at + d], stroke);
-            }
-            let hidden = if dirac.occluded { " (hidden)" } else { "" };
-            painter.text(
-                at + egui::vec2(8.0, -8.0),
-                egui::Align2::LEFT_BOTTOM,
-                format!("δ {}{hidden}", dirac.name),
-                font.clone(),
-                colour,
-            );
-        }
-    }
-    painter.text(
-        rect.center_top() + egui::vec2(0.0, 2.0),
-        egui::Align2::CENTER_TOP,
-        "up",
-        egui::FontId::proportional(10.0),
-        egui::Color32::from_gray(170),
-    );
-    if let Some(pos) = response.hover_pos() {
-        hover_ui(&response, pos, rect, coloured, outcome);
-    }
-    colour_bar_ui(ui, coloured);
-}
-
-/// The value under the pointer, and the direction.
-fn hover_ui(
-    response: &egui::Response,
-    pos: egui::Pos2,
-    rect: egui::Rect,
-    coloured: &ColouredMap,
-    outcome: &Outcome,
-) {
-    let uv = (pos - rect.min) / rect.size();
-    let size = coloured.size;
-    let (column, row) = ((uv.x * size as f32) as u32, (uv.y * size as f32) as u32);
-    if column >= size || row >= size {
-        return;
-    }
-    let centre = IntegrandMap::disk_point(size, column, row, Vec2::splat(0.5));
-    let Some(w) = crate::analysis::hemisphere::disk_to_direction(centre) else {
-        return;
-    };
-    let index = (row * size + column) as usize;
-    let value = outcome.map.layer(coloured.factor)[index];
-    let source = outcome.domains.source[index]
-        .map(|s| {
-            let seen = if outcome.domains.visible[index] {
-                ""
-            } else {
-                ", hidden"
-            };
-            format!(" · in Ω of {}{seen}", outcome.domains.names[s as usize])
-        })
-        .unwrap_or_default();
-    response.clone().on_hover_text(format!(
-        "θ = {:.0}°{source}\n{} = {} {}",
-        w.z.clamp(-1.0, 1.0).acos().to_degrees(),
-        factor_label(coloured.factor),
-        format_tick(value, Unit::Radiance),
-        coloured.factor.unit()
-    ));
-}
-
-/// The colour bar under the map, with its ticks and unit.
-fn colour_bar_ui(ui: &mut egui::Ui, coloured: &ColouredMap) {
-    let (response, painter) =
-        ui.allocate_painter(egui::vec2(MAP_POINTS, 46.0), egui::Sense::hover());
-    let bar = egui::Rect::from_min_size(response.rect.min, egui::vec2(MAP_POINTS, 12.0));
-    let steps = 64;
-    let mut mesh = egui::Mesh::default();
-    for k in 0..steps {
-        let (t0, t1) = (k as f32 / steps as f32, (k + 1) as f32 / steps as f32);
-        let [r, g, b] = ColourMap::Sequential.srgb((t0 + t1) / 2.0);
-        let byte = |c: f32| (c.clamp(0.0, 1.0) * 255.0).round() as u8;
-        let colour = egui::Color32::from_rgb(byte(r), byte(g), byte(b));
-        let (x0, x1) = (bar.left() + t0 * bar.width(), bar.left() + t1 * bar.width());
-        mesh.add_colored_rect(egui::Rect::from_x_y_ranges(x0..=x1, bar.y_range()), colour);
-    }
-    painter.add(mesh);
-    let text = ui.visuals().text_color();
-    let font = egui::FontId::proportional(11.0);
-    for (t, align) in [
-        (0.0, egui::Align2::LEFT_TOP),
-        (0.5, egui::Align2::CENTER_TOP),
-        (1.0, egui::Align2::RIGHT_TOP),
-    ] {
-        let x = bar.left() + t * bar.width();
-        painter.text(
-            egui::pos2(x, bar.bottom() + 2.0),
-            align,
-            format_tick(coloured.value_at(t), Unit::Radiance),
-            font.clone(),
-            text,
-        );
-    }
-    let scale = match coloured.scale {
-        Scale::Linear => "linear",
-        Scale::Log => "log",
-    };
-    painter.text(
-        egui::pos2(bar.center().x, bar.bottom() + 16.0),
-        egui::Align2::CENTER_TOP,
-        format!(
-            "{} ({}), {scale}",
-            factor_label(coloured.factor),
-            coloured.factor.unit()
-        ),
-        font,
-        text,
-    );
-}
-
-/// The quadrature, the point lights, and how the map was made.
-fn numbers_ui(ui: &mut egui::Ui, view: &HemisphereView, computed: &Computed, outcome: &Outcome) {
-    let map = &outcome.map;
-    let term = computed.asked.term;
-    ui.label(format!(
-        "∫ {} over Ω⁺ = {:.5} ± {:.5} W/m²/sr",
-        term.label(),
-        luminance(map.integral),
-        map.integral_standard_error
-    ))
-    .on_hover_text("The map's quadrature (luminance), with its standard error");
-    if term == Term::L1 && !map.diracs.is_empty() {
-        let diracs: f32 = map.diracs.iter().map(|d| luminance(d.radiance)).sum();
-        let below = map.diracs.iter().filter(|d| d.direction.z <= 0.0).count();
-        let below = match below {
-            0 => String::new(),
-            n => format!(", {n} below the horizon"),
-        };
-        ui.label(format!(
-            "+ {} point light(s){below}: {:.5}  →  {} = {:.5} W/m²/sr",
-            map.diracs.len(),
-            diracs,
-            term.label(),
-            luminance(map.quadrature())
-        ));
-    }
-    let refining = !view.is_last_round(computed);
-    ui.horizontal(|ui| {
-        if refining {
-            ui.spinner();
-        }
-        ui.add(egui::Label::new(
-            egui::RichText::new(format!(
-                "p = ({:.3}, {:.3}, {:.3}) · {} direction(s) per pixel of {}² · {:.0} ms · equal-area disk, zenith at the centre",
-                outcome.point.x,
-                outcome.point.y,
-                outcome.point.z,
-                map.directions_per_pixel,
-                map.size,
-                computed.duration.as_secs_f64() * 1e3
-            ))
-            .small()
-            .weak(),
-        ).wrap());
-    });
 }

@@ -428,7 +428,8 @@ impl LumiereApp {
             self.renderer.film(),
             snapshot.continuations.clone(),
         );
-        self.hemisphere.update(ctx, &self.sent, self.probe.pixel);
+        self.hemisphere
+            .update(ctx, &self.sent, self.probe.pixel, &snapshot.continuations);
     }
 
     /// Replaces the scene by the one at `spec`; on failure keeps the current one.
