@@ -135,23 +135,55 @@ pub fn source_domains(context: &RenderContext, p: &ShadingPoint, size: u32) -> S
 
 /// The name of the first source along `ray`, through any surface in front
 /// of it, and whether it is the first surface met.
-fn first_source(context: &RenderContext, mut ray: crate::geometry::Ray) -> Option<(String, bool)> {
+fn first_source(context: &RenderContext, ray: crate::geometry::Ray) -> Option<(String, bool)> {
+    let behind = first_light(context, ray)?;
+    let source = context.lights.source_of(behind.light as usize);
+    Some((
+        source.name(&context.scene).to_owned(),
+        behind.occluders == 0,
+    ))
+}
+
+/// The first light along a ray, whatever stands in front of it.
+pub struct LightBehind {
+    /// Its index in the light table.
+    pub light: u32,
+    pub hit: Hit,
+    /// The point hit, on a triangle light.
+    pub point: Option<SurfacePoint>,
+    /// Surfaces the ray went through before it.
+    pub occluders: u32,
+}
+
+/// The first light along `ray`, through at most [`MOST_OCCLUDERS`] surfaces.
+pub fn first_light(context: &RenderContext, mut ray: crate::geometry::Ray) -> Option<LightBehind> {
     let (scene, lights) = (&context.scene, &context.lights);
     for occluders in 0..MOST_OCCLUDERS {
-        let light = match context.accel.closest_hit(&ray)? {
-            Hit::Sphere { sphere, .. } => lights.light_of_sphere(sphere),
-            Hit::Triangle { triangle, b, .. } => match lights.light_of_triangle(triangle) {
-                Some(light) => light,
-                None => {
-                    // an occluder: look on behind it
-                    let point = SurfacePoint::new(scene, triangle, b);
-                    ray = point.spawn_ray(ray.direction);
-                    continue;
+        let hit = context.accel.closest_hit(&ray)?;
+        match hit {
+            Hit::Sphere { sphere, .. } => {
+                let light = lights.light_of_sphere(sphere);
+                return Some(LightBehind {
+                    light,
+                    hit,
+                    point: None,
+                    occluders,
+                });
+            }
+            Hit::Triangle { triangle, b, .. } => {
+                let point = SurfacePoint::new(scene, triangle, b);
+                if let Some(light) = lights.light_of_triangle(triangle) {
+                    return Some(LightBehind {
+                        light,
+                        hit,
+                        point: Some(point),
+                        occluders,
+                    });
                 }
-            },
-        };
-        let name = lights.source_of(light as usize).name(scene).to_owned();
-        return Some((name, occluders == 0));
+                // an occluder: look on behind it
+                ray = point.spawn_ray(ray.direction);
+            }
+        }
     }
     None
 }

@@ -21,9 +21,9 @@ use crate::transport::context::RenderContext;
 use crate::transport::counts::RayCounts;
 use crate::transport::path_log::SegmentKind;
 use crate::transport::sample_pixel_logged;
-use crate::transport::surface::SurfacePoint;
 use crate::transport::warps::{UNIFORM_HEMISPHERE_PDF, cosine_hemisphere_pdf};
 
+use super::domains::first_light;
 use super::hemisphere::{IntegrandMap, ShadingPoint, direction_to_disk, disk_to_direction};
 
 /// How a sample's direction was drawn.
@@ -273,30 +273,21 @@ pub fn strategy_density(
         .collect()
 }
 
-/// Surfaces a density ray goes through, at most, to the light behind.
-const MOST_OCCLUDERS: u32 = 64;
-
-/// The light-sampling density of direction `w_local` at p.
+/// The light-sampling density of direction `w_local` at p, through the
+/// light the direction meets behind any occluder.
 fn light_density(context: &RenderContext, p: &ShadingPoint, w_local: Vec3) -> f32 {
-    let (scene, lights) = (&context.scene, &context.lights);
     let w = p.frame.to_world(w_local).normalize();
-    let mut ray = p.point.spawn_ray(w);
-    for _ in 0..MOST_OCCLUDERS {
-        match context.accel.closest_hit(&ray) {
-            None => return 0.0,
-            Some(Hit::Sphere { sphere, .. }) => {
-                return lights.sphere_emission(sphere, p.point.p, w).1;
-            }
-            Some(Hit::Triangle { triangle, b, .. }) => {
-                let point = SurfacePoint::new(scene, triangle, b);
-                if lights.light_of_triangle(triangle).is_some() {
-                    return lights.pdf_triangle(scene, p.point.p, triangle, &point);
-                }
-                ray = point.spawn_ray(w);
-            }
+    let Some(behind) = first_light(context, p.point.spawn_ray(w)) else {
+        return 0.0;
+    };
+    let lights = &context.lights;
+    match (behind.hit, &behind.point) {
+        (Hit::Sphere { sphere, .. }, _) => lights.sphere_emission(sphere, p.point.p, w).1,
+        (Hit::Triangle { triangle, .. }, Some(point)) => {
+            lights.pdf_triangle(&context.scene, p.point.p, triangle, point)
         }
+        _ => 0.0,
     }
-    0.0
 }
 
 /// The terms the samples' context renders: the view's, and `term`.

@@ -15,7 +15,7 @@ use std::time::Duration;
 use eframe::egui;
 use glam::Vec2;
 
-use crate::analysis::domains::{SourceDomains, source_domains};
+use crate::analysis::domains::{DomainLabel, SourceDomains, source_domains};
 use crate::analysis::hemisphere::{
     Factor, HemisphereError, IntegrandMap, ShadingPoint, integrand_map,
 };
@@ -105,6 +105,9 @@ pub struct Outcome {
 /// film's samples at p and each strategy's density.
 pub struct AtPoint {
     pub domains: SourceDomains,
+    /// The domains' outlines and names (disk coordinates), found once.
+    pub outline: Vec<(Vec2, Vec2)>,
+    pub labels: Vec<DomainLabel>,
     pub drawn: DrawnSamples,
     pub light_density: Option<Vec<f32>>,
     pub directions_density: Option<Vec<f32>>,
@@ -140,7 +143,7 @@ pub struct HemisphereView {
     pub result: Option<Arc<Computed>>,
     job: Option<Job<Option<Computed>>>,
     cache: Arc<Mutex<Contexts>>,
-    texture: Option<(TextureOf, egui::TextureHandle)>,
+    texture: Option<(TextureOf, egui::TextureHandle, ColouredMap)>,
 }
 
 impl Default for HemisphereView {
@@ -272,28 +275,34 @@ impl HemisphereView {
         &mut self,
         ctx: &egui::Context,
         computed: &Arc<Computed>,
-    ) -> Option<(egui::TextureId, ColouredMap)> {
+    ) -> Option<egui::TextureId> {
         let outcome = computed.outcome.as_ref().ok()?;
-        let coloured = match self.shows {
-            MapShows::Factor(factor) => colour_map(&outcome.map, factor, self.scale),
-            MapShows::Density(strategy) => {
-                let density = outcome.at_point.density(strategy)?.clone();
-                colour_values(density, outcome.map.size, self.scale)
-            }
-        };
         let of = TextureOf {
             result: Arc::as_ptr(computed),
             shows: self.shows,
             scale: self.scale,
         };
-        if self.texture.as_ref().is_none_or(|(t, _)| *t != of) {
+        // coloured and uploaded when what is shown changes, not every frame
+        if self.texture.as_ref().is_none_or(|(t, _, _)| *t != of) {
+            let coloured = match self.shows {
+                MapShows::Factor(factor) => colour_map(&outcome.map, factor, self.scale),
+                MapShows::Density(strategy) => {
+                    let density = outcome.at_point.density(strategy)?.clone();
+                    colour_values(density, outcome.map.size, self.scale)
+                }
+            };
             let size = [coloured.size as usize, coloured.size as usize];
             let image = egui::ColorImage::from_rgba_unmultiplied(size, &coloured.srgba);
             let handle =
                 ctx.load_texture("lumiere hemisphere", image, egui::TextureOptions::NEAREST);
-            self.texture = Some((of, handle));
+            self.texture = Some((of, handle, coloured));
         }
-        self.texture.as_ref().map(|(_, h)| (h.id(), coloured))
+        self.texture.as_ref().map(|(_, h, _)| h.id())
+    }
+
+    /// The map as last coloured for the texture.
+    fn coloured(&self) -> Option<&ColouredMap> {
+        self.texture.as_ref().map(|(_, _, coloured)| coloured)
     }
 }
 
@@ -345,6 +354,8 @@ fn compute(
                 let density =
                     |strategy| strategy_density(context, &p, asked.term, strategy, MAP_SIZE);
                 Arc::new(AtPoint {
+                    outline: domains.outline(),
+                    labels: domains.labels(),
                     light_density: drawn.light.map(|_| density(Strategy::Light)),
                     directions_density: drawn.directions.map(|_| density(Strategy::Directions)),
                     domains,
@@ -429,12 +440,14 @@ pub fn hemisphere_window(
                     egui::ScrollArea::vertical()
                         .max_height(height)
                         .show(ui, |ui| {
-                            if let Some((texture, coloured)) = view.texture(ctx, &computed) {
+                            if let Some(texture) = view.texture(ctx, &computed)
+                                && let Some(coloured) = view.coloured()
+                            {
                                 map_ui::map_ui(
                                     ui,
                                     view,
                                     texture,
-                                    &coloured,
+                                    coloured,
                                     outcome,
                                     computed.term(),
                                 );

@@ -105,9 +105,8 @@ pub(super) fn map_ui(
     let screen = |d: Vec2| rect.center() + egui::vec2(d.x, -d.y) * rect.width() / 2.0;
     let rim = egui::Stroke::new(1.0, egui::Color32::from_gray(140));
     painter.circle_stroke(rect.center(), rect.width() / 2.0, rim);
-    let domains = &outcome.at_point.domains;
     let outline = egui::Stroke::new(1.5, egui::Color32::WHITE);
-    for (a, b) in domains.outline() {
+    for &(a, b) in &outcome.at_point.outline {
         painter.line_segment([screen(a), screen(b)], outline);
     }
     let font = egui::FontId::proportional(12.0);
@@ -121,7 +120,7 @@ pub(super) fn map_ui(
         );
         painter.text(at, align, text, font.clone(), colour);
     };
-    for label in domains.labels() {
+    for label in &outcome.at_point.labels {
         let at = screen(label.below) + egui::vec2(0.0, 2.0);
         let text = format!("Ω {}", label.name);
         shadowed_text(at, egui::Align2::CENTER_TOP, &text, egui::Color32::WHITE);
