@@ -20,6 +20,7 @@ mod common;
 use std::f64::consts::PI;
 
 use glam::{Vec2, Vec3};
+use lumiere::analysis::chi2::{self, Chi2, chi2_survival, gamma_q};
 use lumiere::analysis::metrics::image_error;
 use lumiere::course::Choice;
 use lumiere::course::Sampler;
@@ -38,138 +39,18 @@ use common::{paired_difference, pixel_errors, render_film, small};
 
 /// Smallest p-value a correct warp may show; fixed seeds make it deterministic.
 const SIGNIFICANCE: f64 = 1e-4;
-/// Bins expecting fewer samples than this are pooled.
-const MIN_EXPECTED: f64 = 5.0;
 const WARP_SAMPLES: u64 = 200_000;
 
-/// ln Γ(x) for x > 0 (Lanczos, g = 7, 9 terms; ~15 digits).
-fn ln_gamma(x: f64) -> f64 {
-    const COEFFICIENTS: [f64; 9] = [
-        0.999_999_999_999_809_9,
-        676.520_368_121_885_1,
-        -1_259.139_216_722_402_8,
-        771.323_428_777_653_1,
-        -176.615_029_162_140_6,
-        12.507_343_278_686_905,
-        -0.138_571_095_265_720_12,
-        9.984_369_578_019_572e-6,
-        1.505_632_735_149_311_6e-7,
-    ];
-    if x < 0.5 {
-        // reflection: Γ(x) Γ(1 − x) = π / sin(πx)
-        return (PI / (PI * x).sin()).ln() - ln_gamma(1.0 - x);
-    }
-    let x = x - 1.0;
-    let t = x + 7.5;
-    let series = COEFFICIENTS[1..]
-        .iter()
-        .enumerate()
-        .fold(COEFFICIENTS[0], |sum, (i, c)| {
-            sum + c / (x + i as f64 + 1.0)
-        });
-    0.5 * (2.0 * PI).ln() + (x + 0.5) * t.ln() - t + series.ln()
-}
-
-/// The regularised upper incomplete gamma function Q(a, x) = Γ(a, x) / Γ(a):
-/// its series below x = a + 1, Lentz's continued fraction above.
-fn gamma_q(a: f64, x: f64) -> f64 {
-    if x <= 0.0 {
-        return 1.0;
-    }
-    let log_prefactor = a * x.ln() - x - ln_gamma(a);
-    if x < a + 1.0 {
-        let (mut term, mut sum, mut n) = (1.0 / a, 1.0 / a, a);
-        while term.abs() > sum.abs() * 1e-15 {
-            n += 1.0;
-            term *= x / n;
-            sum += term;
-        }
-        1.0 - sum * log_prefactor.exp()
-    } else {
-        let tiny = 1e-300;
-        let mut b = x + 1.0 - a;
-        let (mut c, mut d) = (1.0 / tiny, 1.0 / b);
-        let mut fraction = d;
-        for i in 1..10_000 {
-            let an = -(i as f64) * (i as f64 - a);
-            b += 2.0;
-            d = an * d + b;
-            d = if d.abs() < tiny { tiny } else { d };
-            c = b + an / c;
-            c = if c.abs() < tiny { tiny } else { c };
-            d = 1.0 / d;
-            let delta = d * c;
-            fraction *= delta;
-            if (delta - 1.0).abs() < 1e-15 {
-                break;
-            }
-        }
-        fraction * log_prefactor.exp()
-    }
-}
-
-/// P(X ≥ statistic) for X ~ χ² with `dof` degrees of freedom.
-fn chi2_survival(statistic: f64, dof: usize) -> f64 {
-    gamma_q(dof as f64 / 2.0, statistic / 2.0)
-}
-
-#[derive(Debug)]
-struct Chi2 {
-    statistic: f64,
-    dof: usize,
-    p_value: f64,
-}
-
-/// χ² test of `observed` counts against bin `probabilities` (which must
-/// cover the whole domain: their sum is checked against 1). Bins are taken
-/// by increasing expectation and grouped until each group expects ≥ 5.
+/// [`lumiere::analysis::chi2::chi2_test`], checking first that the bin
+/// probabilities cover the whole domain (a pdf not normalised fails here).
 fn chi2_test(observed: &[u64], probabilities: &[f64]) -> Chi2 {
     assert_eq!(observed.len(), probabilities.len());
-    let total: u64 = observed.iter().sum();
     let probability_sum: f64 = probabilities.iter().sum();
     assert!(
         (probability_sum - 1.0).abs() < 1e-4,
         "the bin probabilities sum to {probability_sum}, not 1: the pdf is not normalised"
     );
-    let impossible = observed
-        .iter()
-        .zip(probabilities)
-        .any(|(&o, &p)| o > 0 && p <= 0.0);
-    if impossible {
-        return Chi2 {
-            statistic: f64::INFINITY,
-            dof: 0,
-            p_value: 0.0,
-        };
-    }
-    let mut order: Vec<usize> = (0..observed.len()).collect();
-    order.sort_by(|&a, &b| probabilities[a].total_cmp(&probabilities[b]));
-    let mut groups: Vec<(f64, f64)> = Vec::new(); // (observed, expected)
-    let mut open = (0.0, 0.0);
-    for i in order {
-        open.0 += observed[i] as f64;
-        open.1 += probabilities[i] * total as f64;
-        if open.1 >= MIN_EXPECTED {
-            groups.push(open);
-            open = (0.0, 0.0);
-        }
-    }
-    if open.1 > 0.0 || open.0 > 0.0 {
-        match groups.last_mut() {
-            Some(last) => {
-                last.0 += open.0;
-                last.1 += open.1;
-            }
-            None => groups.push(open),
-        }
-    }
-    let statistic: f64 = groups.iter().map(|&(o, e)| (o - e) * (o - e) / e).sum();
-    let dof = groups.len().saturating_sub(1).max(1);
-    Chi2 {
-        statistic,
-        dof,
-        p_value: chi2_survival(statistic, dof),
-    }
+    chi2::chi2_test(observed, probabilities)
 }
 
 fn assert_fits(what: &str, result: &Chi2) {

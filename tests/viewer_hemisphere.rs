@@ -241,3 +241,58 @@ fn a_lesson_steps_probe_opens_the_view_beside_its_texts() {
         );
     }
 }
+
+/// The sampling lab in the window: opened, it tests the light samples at
+/// p against their own density and accepts; against a uniform density it
+/// rejects, and the window says so.
+#[test]
+fn the_sampling_lab_accepts_the_strategys_density_and_rejects_a_wrong_one() {
+    use lumiere::analysis::sampling_lab::Against;
+    use lumiere::analysis::strategy_samples::Strategy;
+    let mut harness = harness();
+    harness.state_mut().state.stop_at_spp = Some(1);
+    wait_for(&mut harness, "1 spp", |s| {
+        s.idle && s.samples_per_pixel() >= 1
+    });
+    harness.get_by_label("Probe").click();
+    harness.run_steps(2);
+    let rect = harness.state().image_rect().expect("the image is drawn");
+    // the back wall, under the light
+    click(
+        &mut harness,
+        rect.min + egui::vec2(rect.width() * 0.5, rect.height() * 0.3),
+    );
+    let pixel = harness.state().probe.pixel.expect("a pixel is probed");
+    assert_shows_the_map(&mut harness, pixel, Term::L1);
+    let verdict = |harness: &mut Harness<'static, LumiereApp>, against: Against| {
+        let lab = &mut harness.state_mut().hemisphere.lab;
+        (lab.open, lab.strategy, lab.against, lab.samples) =
+            (true, Strategy::Light, against, 20_000);
+        harness.run_steps(2);
+        wait_for_app(harness, "the sampling lab", |app| {
+            let lab = &app.hemisphere.lab;
+            lab.result.as_ref().is_some_and(|r| {
+                r.outcome
+                    .as_ref()
+                    .is_ok_and(|t| t.against == against && t.drawn == 20_000)
+            })
+        });
+        harness.run_steps(3);
+        let result = harness.state().hemisphere.lab.result.clone().unwrap();
+        let tested = result.outcome.as_ref().unwrap().clone();
+        let word = if tested.accepted() {
+            "accepted"
+        } else {
+            "rejected"
+        };
+        let shown = harness.query_by_label_contains(word).is_some();
+        (tested, shown)
+    };
+    let (own, shown) = verdict(&mut harness, Against::Own);
+    assert!(own.accepted(), "own density: p = {}", own.chi2.p_value);
+    assert!(own.chi2.dof >= 3, "the light covers several bins");
+    assert!(shown, "the window states the verdict");
+    let (uniform, shown) = verdict(&mut harness, Against::Uniform);
+    assert!(!uniform.accepted() && uniform.chi2.p_value < 1e-12);
+    assert!(shown, "the window states the verdict");
+}

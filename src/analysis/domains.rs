@@ -156,34 +156,68 @@ pub struct LightBehind {
 }
 
 /// The first light along `ray`, through at most [`MOST_OCCLUDERS`] surfaces.
-pub fn first_light(context: &RenderContext, mut ray: crate::geometry::Ray) -> Option<LightBehind> {
+pub fn first_light(context: &RenderContext, ray: crate::geometry::Ray) -> Option<LightBehind> {
+    let mut first = None;
+    walk_to_lights(context, ray, |light| {
+        first = Some(light);
+        false
+    });
+    first
+}
+
+/// Every light along `ray`, through at most [`MOST_OCCLUDERS`] surfaces,
+/// nearest first; the walk ends at a sphere light (what lies behind it is
+/// not looked for).
+pub fn lights_along(context: &RenderContext, ray: crate::geometry::Ray) -> Vec<LightBehind> {
+    let mut lights = Vec::new();
+    walk_to_lights(context, ray, |light| {
+        lights.push(light);
+        true
+    });
+    lights
+}
+
+/// Walks along `ray` through surfaces, handing each light met to `visit`
+/// until it returns false.
+fn walk_to_lights(
+    context: &RenderContext,
+    mut ray: crate::geometry::Ray,
+    mut visit: impl FnMut(LightBehind) -> bool,
+) {
     let (scene, lights) = (&context.scene, &context.lights);
-    for occluders in 0..MOST_OCCLUDERS {
-        let hit = context.accel.closest_hit(&ray)?;
+    let mut occluders = 0;
+    for _ in 0..MOST_OCCLUDERS {
+        let Some(hit) = context.accel.closest_hit(&ray) else {
+            return;
+        };
         match hit {
             Hit::Sphere { sphere, .. } => {
                 let light = lights.light_of_sphere(sphere);
-                return Some(LightBehind {
+                visit(LightBehind {
                     light,
                     hit,
                     point: None,
                     occluders,
                 });
+                return;
             }
             Hit::Triangle { triangle, b, .. } => {
                 let point = SurfacePoint::new(scene, triangle, b);
+                ray = point.spawn_ray(ray.direction);
+                // a light is handed over; an occluder is looked behind
                 if let Some(light) = lights.light_of_triangle(triangle) {
-                    return Some(LightBehind {
+                    let light = LightBehind {
                         light,
                         hit,
                         point: Some(point),
                         occluders,
-                    });
+                    };
+                    if !visit(light) {
+                        return;
+                    }
                 }
-                // an occluder: look on behind it
-                ray = point.spawn_ray(ray.direction);
+                occluders += 1;
             }
         }
     }
-    None
 }

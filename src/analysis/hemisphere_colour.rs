@@ -54,6 +54,17 @@ pub fn colour_map(map: &IntegrandMap, factor: Factor, scale: Scale) -> ColouredM
 /// to the largest value (linear), or over [`LOG_DECADES`] decades below it
 /// (log; zero shows as the bottom colour).
 pub fn colour_values(values: Vec<f32>, size: u32, scale: Scale) -> ColouredMap {
+    colour_values_up_to(values, size, scale, None)
+}
+
+/// [`colour_values`] with the top of the bar at `top` if given (two maps
+/// compared on one bar), else at the largest value.
+pub fn colour_values_up_to(
+    values: Vec<f32>,
+    size: u32,
+    scale: Scale,
+    top: Option<f32>,
+) -> ColouredMap {
     let inside: Vec<bool> = (0..size * size)
         .map(|i| {
             let centre = IntegrandMap::disk_point(size, i % size, i / size, glam::Vec2::splat(0.5));
@@ -66,6 +77,7 @@ pub fn colour_values(values: Vec<f32>, size: u32, scale: Scale) -> ColouredMap {
         .filter(|(_, inside)| **inside)
         .map(|(v, _)| *v)
         .fold(0.0f32, f32::max);
+    let high = top.unwrap_or(high);
     let high = if high > 0.0 { high } else { 1.0 };
     let range = match scale {
         Scale::Linear => (0.0, high),

@@ -4,6 +4,7 @@
 //! there, and the convergence capture behind the viewer's plot.
 
 pub mod capture;
+pub mod chi2;
 pub mod convergence;
 pub mod domains;
 pub mod hemisphere;
@@ -12,4 +13,5 @@ pub mod metrics;
 pub mod noise;
 pub mod path_view;
 pub mod probe;
+pub mod sampling_lab;
 pub mod strategy_samples;

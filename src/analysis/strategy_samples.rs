@@ -11,19 +11,22 @@
 //! value. For L2 and beyond they are p's continuations, each with the
 //! radiance its path brought to the term.
 
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec3A};
 
 use crate::course::color::luminance;
 use crate::course::{IndirectSampling, LightSampling, Term, TermSet};
-use crate::geometry::accel::Hit;
+use crate::geometry::accel::{Hit, intersect_sphere};
+use crate::geometry::{Ray, ShearedRay};
 use crate::render::sample_stream;
 use crate::transport::context::RenderContext;
 use crate::transport::counts::RayCounts;
+use crate::transport::light::{Light, cone_of};
 use crate::transport::path_log::SegmentKind;
 use crate::transport::sample_pixel_logged;
-use crate::transport::warps::{UNIFORM_HEMISPHERE_PDF, cosine_hemisphere_pdf};
+use crate::transport::surface::SurfacePoint;
+use crate::transport::warps::{UNIFORM_HEMISPHERE_PDF, cosine_hemisphere_pdf, uniform_cone_pdf};
 
-use super::domains::first_light;
+use super::domains::lights_along;
 use super::hemisphere::{IntegrandMap, ShadingPoint, direction_to_disk, disk_to_direction};
 
 /// How a sample's direction was drawn.
@@ -216,7 +219,10 @@ pub fn drawn_samples(
 }
 
 /// How each strategy draws for `term` under the context's settings.
-fn strategies(context: &RenderContext, term: Term) -> (Option<&'static str>, Option<&'static str>) {
+pub fn strategies(
+    context: &RenderContext,
+    term: Term,
+) -> (Option<&'static str>, Option<&'static str>) {
     let settings = &context.settings;
     if term != Term::L1 {
         let directions = match settings.indirect_sampling {
@@ -246,48 +252,99 @@ pub fn strategy_density(
     strategy: Strategy,
     size: u32,
 ) -> Vec<f32> {
+    (0..size * size)
+        .map(|i| {
+            let centre = IntegrandMap::disk_point(size, i % size, i / size, Vec2::splat(0.5));
+            disk_to_direction(centre).map_or(0.0, |w_local| {
+                direction_density(context, p, term, strategy, w_local)
+            })
+        })
+        .collect()
+}
+
+/// The density (1/sr) with which `strategy` draws the direction `w_local`
+/// (p's frame, above the horizon) at p for `term`.
+pub fn direction_density(
+    context: &RenderContext,
+    p: &ShadingPoint,
+    term: Term,
+    strategy: Strategy,
+    w_local: Vec3,
+) -> f32 {
+    match strategy {
+        Strategy::Directions => match directions_distribution(context, term) {
+            IndirectSampling::Uniform => UNIFORM_HEMISPHERE_PDF,
+            IndirectSampling::Cosine => cosine_hemisphere_pdf(w_local.z),
+            IndirectSampling::Brdf => p.brdf.pdf(p.wo_local, w_local),
+        },
+        Strategy::Light => light_density(context, p, w_local),
+    }
+}
+
+/// The distribution the directions strategy draws from for `term`: L1's
+/// gathering draws by the BRDF (uniformly with hemisphere sampling), the
+/// continuations by the indirect sampling chosen.
+pub fn directions_distribution(context: &RenderContext, term: Term) -> IndirectSampling {
     let settings = &context.settings;
-    let directions = if term == Term::L1 {
+    if term == Term::L1 {
         match settings.light_sampling {
             LightSampling::Hemisphere => IndirectSampling::Uniform,
             _ => IndirectSampling::Brdf,
         }
     } else {
         settings.indirect_sampling
-    };
-    (0..size * size)
-        .map(|i| {
-            let centre = IntegrandMap::disk_point(size, i % size, i / size, Vec2::splat(0.5));
-            let Some(w_local) = disk_to_direction(centre) else {
-                return 0.0;
-            };
-            match strategy {
-                Strategy::Directions => match directions {
-                    IndirectSampling::Uniform => UNIFORM_HEMISPHERE_PDF,
-                    IndirectSampling::Cosine => cosine_hemisphere_pdf(w_local.z),
-                    IndirectSampling::Brdf => p.brdf.pdf(p.wo_local, w_local),
-                },
-                Strategy::Light => light_density(context, p, w_local),
-            }
-        })
-        .collect()
+    }
 }
 
-/// The light-sampling density of direction `w_local` at p, through the
-/// light the direction meets behind any occluder.
-fn light_density(context: &RenderContext, p: &ShadingPoint, w_local: Vec3) -> f32 {
+/// Lights a density looks at one by one (more: through the scene's BVH).
+const LIGHTS_TESTED_ONE_BY_ONE: usize = 64;
+
+/// The light-sampling density of direction `w_local` at p: the sum over
+/// the lights the direction meets, whatever stands in front of them (a
+/// light sample is drawn whether or not it is hidden).
+pub fn light_density(context: &RenderContext, p: &ShadingPoint, w_local: Vec3) -> f32 {
     let w = p.frame.to_world(w_local).normalize();
-    let Some(behind) = first_light(context, p.point.spawn_ray(w)) else {
-        return 0.0;
-    };
     let lights = &context.lights;
-    match (behind.hit, &behind.point) {
-        (Hit::Sphere { sphere, .. }, _) => lights.sphere_emission(sphere, p.point.p, w).1,
-        (Hit::Triangle { triangle, .. }, Some(point)) => {
-            lights.pdf_triangle(&context.scene, p.point.p, triangle, point)
-        }
-        _ => 0.0,
+    if lights.lights.len() > LIGHTS_TESTED_ONE_BY_ONE {
+        return lights_along(context, p.point.spawn_ray(w))
+            .iter()
+            .map(|behind| match (behind.hit, &behind.point) {
+                (Hit::Sphere { sphere, .. }, _) => lights.sphere_emission(sphere, p.point.p, w).1,
+                (Hit::Triangle { triangle, .. }, Some(point)) => {
+                    lights.pdf_triangle(&context.scene, p.point.p, triangle, point)
+                }
+                _ => 0.0,
+            })
+            .sum();
     }
+    // few lights: each intersected directly, cheaper than a walk through the scene
+    let ray = ShearedRay::new(p.point.p.into(), w.into());
+    let mut density = 0.0;
+    for (index, light) in lights.lights.iter().enumerate() {
+        match light {
+            Light::Triangle {
+                triangle, corners, ..
+            } => {
+                let [p0, p1, p2] = corners.map(Vec3A::from);
+                if let Some(hit) = ray.intersect(f32::INFINITY, p0, p1, p2) {
+                    let b = Vec3::new(hit.b0, hit.b1, hit.b2);
+                    let point = SurfacePoint::new(&context.scene, *triangle, b);
+                    density += lights.pdf_triangle(&context.scene, p.point.p, *triangle, &point);
+                }
+            }
+            Light::Sphere { sphere, .. } => {
+                let towards = Ray::new(p.point.p, w, f32::INFINITY);
+                if intersect_sphere(&towards, sphere, f32::INFINITY).is_some()
+                    && let Some((_, one_minus_cos)) = cone_of(sphere, p.point.p)
+                {
+                    density +=
+                        lights.selection_probability(index) * uniform_cone_pdf(one_minus_cos);
+                }
+            }
+            _ => {} // a Dirac: no density
+        }
+    }
+    density
 }
 
 /// The terms the samples' context renders: the view's, and `term`.

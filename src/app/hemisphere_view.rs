@@ -32,7 +32,10 @@ use crate::scene::Camera;
 use crate::transport::context::RenderContext;
 use crate::transport::continuations::Continuations;
 
+mod lab_ui;
 mod map_ui;
+
+pub use lab_ui::{LabComputed, LabView};
 
 /// The map's side, in pixels: each a direction stratum of 2·(2/128)² sr.
 pub const MAP_SIZE: u32 = 128;
@@ -140,6 +143,8 @@ pub struct HemisphereView {
     /// The film's samples at p drawn over the map, and how many.
     pub samples_shown: bool,
     pub samples_drawn: u32,
+    /// The sampling lab's choices and outcome.
+    pub lab: LabView,
     pub result: Option<Arc<Computed>>,
     job: Option<Job<Option<Computed>>>,
     cache: Arc<Mutex<Contexts>>,
@@ -155,6 +160,7 @@ impl Default for HemisphereView {
             scale: Scale::Linear,
             samples_shown: true,
             samples_drawn: 16,
+            lab: LabView::default(),
             result: None,
             job: None,
             cache: Arc::default(),
@@ -197,7 +203,9 @@ impl HemisphereView {
             return true;
         };
         let asked = self.asked(request, pixel);
-        self.job.is_none()
+        let samples_settings = samples_settings(request, asked.term);
+        self.lab.is_settled(&asked, &samples_settings)
+            && self.job.is_none()
             && self
                 .result
                 .as_ref()
@@ -240,10 +248,12 @@ impl HemisphereView {
         let Some(pixel) = pixel.filter(|_| self.shown) else {
             return;
         };
+        let asked = self.asked(request, pixel);
+        let samples_settings = samples_settings(request, asked.term);
+        self.lab.update(ctx, &asked, &samples_settings, &self.cache);
         if self.job.is_some() {
             return; // what it computes may be stale: the next round catches up
         }
-        let asked = self.asked(request, pixel);
         let (round, at_point) = match &self.result {
             Some(r) if r.asked == asked => {
                 if self.is_last_round(r) {
@@ -256,11 +266,6 @@ impl HemisphereView {
         };
         let cache = Arc::clone(&self.cache);
         let repaint = super::waker::Waker::new(ctx);
-        let samples_settings = RenderSettings {
-            terms: sampled_terms(request.settings.terms, asked.term),
-            auto_indirect_samples: false,
-            ..request.settings.clone()
-        };
         let continuations = continuations.clone();
         self.job = Some(threads::spawn("lumiere hemisphere", move || {
             let samples = (samples_settings, continuations);
@@ -303,6 +308,16 @@ impl HemisphereView {
     /// The map as last coloured for the texture.
     fn coloured(&self) -> Option<&ColouredMap> {
         self.texture.as_ref().map(|(_, _, coloured)| coloured)
+    }
+}
+
+/// The settings the film's samples at p are drawn with: the view's, with
+/// `term` rendered.
+fn samples_settings(request: &ViewRequest, term: Term) -> RenderSettings {
+    RenderSettings {
+        terms: sampled_terms(request.settings.terms, term),
+        auto_indirect_samples: false,
+        ..request.settings.clone()
     }
 }
 
@@ -454,6 +469,7 @@ pub fn hemisphere_window(
                             }
                             map_ui::numbers_ui(ui, &computed, outcome);
                             map_ui::samples_ui(ui, view, &computed, outcome);
+                            lab_ui::lab_ui(ui, &mut view.lab, &outcome.at_point.drawn);
                         });
                 }
             }
