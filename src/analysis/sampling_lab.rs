@@ -256,8 +256,9 @@ pub fn sampling_lab(
             Against::WithoutLightCosine => light_density_without_cosine(context, p, w_local),
         }
     };
-    let tolerance_of =
-        |probability: f64| 0.1 * (probability.max(1.0 / samples as f64) / samples as f64).sqrt();
+    // a tenth of a bin count's standard deviation (in probability)
+    let n = samples.max(1) as f64;
+    let tolerance_of = |probability: f64| 0.1 * (probability.max(1.0 / n) / n).sqrt();
     let mut probabilities: Vec<f64> = (0..SamplingLab::BINS - 1)
         .map(|bin| {
             let (ring, sector) = (bin as u32 / SECTORS, bin as u32 % SECTORS);
