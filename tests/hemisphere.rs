@@ -8,7 +8,7 @@ use glam::{Vec2, Vec3};
 
 use lumiere::analysis::domains::{SourceDomains, source_domains};
 use lumiere::analysis::hemisphere::{
-    Factor, HemisphereError, IntegrandMap, ShadingPoint, estimator_mean, integrand_map,
+    Factor, HemisphereError, IntegrandMap, ShadingPoint, Vertex, estimator_mean, integrand_map,
 };
 use lumiere::analysis::hemisphere_colour::colour_map;
 use lumiere::analysis::noise::Scale;
@@ -466,7 +466,7 @@ fn the_samples_drawn_at_p_are_the_estimators_own() {
     let ray = pixel_ray(&cornell, x, y);
     let p = ShadingPoint::seen(&cornell, &ray).unwrap();
     for term in [Term::L1, Term::L2] {
-        let drawn = drawn_samples(&cornell, &p, (x, y), term, 64);
+        let drawn = drawn_samples(&cornell, &p, (x, y), Vertex::FirstHit, term, 64);
         assert_eq!(drawn.per_pass.len(), 64);
         for (pass, value) in drawn.per_pass.iter().enumerate() {
             let stream = sample_stream(&settings, (y * WIDTH + x) as u64, pass as u32);
@@ -499,7 +499,7 @@ fn the_samples_drawn_at_p_are_the_estimators_own() {
             (last.mean - luminance(drawn.mean()) as f64).abs() < 1e-6 && last.standard_error > 0.0
         );
     }
-    let l1 = drawn_samples(&cornell, &p, (x, y), Term::L1, 1024);
+    let l1 = drawn_samples(&cornell, &p, (x, y), Vertex::FirstHit, Term::L1, 1024);
     let (light, directions): (
         Vec<&lumiere::analysis::strategy_samples::DrawnSample>,
         Vec<_>,
@@ -534,5 +534,82 @@ fn the_samples_drawn_at_p_are_the_estimators_own() {
     assert!(
         lit > 0 && lit < (size * size / 10) as usize,
         "{lit} pixels of light density"
+    );
+}
+
+/// The nested integral: at q, where a drawn path's bounce from p lands,
+/// the map of L1 integrates to the estimator's L1 along the bounce (what
+/// L2's integrand at p takes as L_i there), ωo at q points back to p, and
+/// the samples drawn at q are the estimator's along p → q.
+#[test]
+fn the_integral_at_q_is_the_light_arriving_at_p_along_the_bounce() {
+    use lumiere::analysis::strategy_samples::drawn_samples;
+    use lumiere::render::sample_stream;
+    use lumiere::transport::counts::RayCounts;
+    use lumiere::transport::path_log::{PathLog, SegmentKind};
+    use lumiere::transport::{sample_pixel_logged, trace};
+    // Phong, so that f_r at q depends on ωo, the way back to p
+    let phong = context(
+        "cornell",
+        RenderSettings {
+            brdf: BrdfOverride::Phong,
+            auto_indirect_samples: false,
+            ..RenderSettings::default()
+        },
+    );
+    let (x, y) = (32, 40);
+    let l1 = TermSet::only(Term::L1);
+    let (mut checked, mut lit) = (0, 0);
+    for pass in 0..12 {
+        let stream = sample_stream(&phong.settings, (y * WIDTH + x) as u64, pass);
+        let mut log = PathLog::default();
+        sample_pixel_logged(&phong, x, y, &stream, &mut RayCounts::default(), &mut log);
+        let Some(bounce) = log
+            .segments
+            .iter()
+            .find(|s| matches!(s.kind, SegmentKind::Bounce { .. }) && s.term == Term::L1)
+            .map(|s| s.ray)
+        else {
+            continue;
+        };
+        let vertex = Vertex::Second { bounce };
+        let ray = vertex.ray(&phong, (x, y));
+        let Some(q) = ShadingPoint::seen(&phong, &ray) else {
+            continue; // the bounce left the box
+        };
+        let back = q.frame.to_world(q.wo_local);
+        assert!(
+            (back + bounce.direction.normalize()).length() < 1e-4,
+            "ωo at q is towards p"
+        );
+        let map = integrand_map(&phong, &ray, l1, 96, 4, 11).unwrap();
+        let (mean, mean_error) = estimator_mean(&phong, &ray, l1, 5, 8192);
+        let (quadrature, mean) = (luminance(map.quadrature()) as f64, luminance(mean) as f64);
+        let combined = (map.integral_standard_error.powi(2) + mean_error.powi(2)).sqrt();
+        // q on the ceiling, beside the light, or on the light: no L1 at all
+        let z = if quadrature == 0.0 && mean == 0.0 {
+            0.0
+        } else {
+            (quadrature - mean) / combined.max(1e-5 * mean)
+        };
+        lit += u32::from(mean > 1e-4);
+        assert!(
+            z.abs() < 4.0,
+            "pass {pass}: at q {quadrature} ± {}, estimator along the bounce {mean} ± {mean_error} (z = {z:.2})",
+            map.integral_standard_error
+        );
+        // the samples at q: the estimator's own along p → q, pass by pass
+        let drawn = drawn_samples(&phong, &q, (x, y), vertex, Term::L1, 16);
+        for (k, value) in drawn.per_pass.iter().enumerate() {
+            let stream = sample_stream(&phong.settings, (y * WIDTH + x) as u64, k as u32);
+            let along = trace(&phong, bounce, &stream, l1, &mut RayCounts::default());
+            assert_eq!(*value, along[Term::L1.index()], "pass {pass}, sample {k}");
+        }
+        assert!(drawn.samples.iter().all(|s| s.direction.z > 0.0));
+        checked += 1;
+    }
+    assert!(
+        checked >= 4 && lit >= 3,
+        "only {checked} bounces landed in the box, {lit} on a lit point"
     );
 }

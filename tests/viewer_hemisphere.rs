@@ -10,7 +10,7 @@ use eframe::egui;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::{Vec2, Vec3};
-use lumiere::analysis::hemisphere::integrand_map;
+use lumiere::analysis::hemisphere::{Vertex, integrand_map};
 use lumiere::app::hemisphere_view::{
     HEMISPHERE_WINDOW_ID, HEMISPHERE_WINDOW_TITLE, MAP_SIZE, ROUNDS,
 };
@@ -56,10 +56,9 @@ fn click(harness: &mut Harness<'static, LumiereApp>, pos: egui::Pos2) {
 /// computes for the pixel-centre ray, round after round up to the last.
 fn assert_shows_the_map(harness: &mut Harness<'static, LumiereApp>, pixel: (u32, u32), term: Term) {
     wait_for_app(harness, "the last round of the map", |app| {
-        app.hemisphere
-            .result
-            .as_ref()
-            .is_some_and(|r| r.pixel() == pixel && r.term() == term && r.is_final())
+        app.hemisphere.result.as_ref().is_some_and(|r| {
+            r.pixel() == pixel && r.vertex() == Vertex::FirstHit && r.term() == term && r.is_final()
+        })
     });
     harness.run_steps(2);
     harness.get_by_label(HEMISPHERE_WINDOW_TITLE);
@@ -295,4 +294,94 @@ fn the_sampling_lab_accepts_the_strategys_density_and_rejects_a_wrong_one() {
     let (uniform, shown) = verdict(&mut harness, Against::Uniform);
     assert!(!uniform.accepted() && uniform.chi2.p_value < 1e-12);
     assert!(shown, "the window states the verdict");
+}
+
+/// The nested integral from the path view: "∫ at q" on the drawn path's
+/// bounce from p opens the view at q, where the bounce lands, with the
+/// same map as the analysis computes along the bounce; "back to p" returns.
+#[test]
+fn the_path_view_opens_the_integral_at_q() {
+    use lumiere::app::hemisphere_view::HEMISPHERE_WINDOW_TITLE_AT_Q;
+    let mut harness = harness();
+    harness.state_mut().state.stop_at_spp = Some(2);
+    wait_for(&mut harness, "2 spp", |s| {
+        s.idle && s.samples_per_pixel() >= 2
+    });
+    harness.get_by_label("Probe").click();
+    harness.run_steps(2);
+    let rect = harness.state().image_rect().expect("the image is drawn");
+    // the back wall: every bounce from it stays in the box
+    click(
+        &mut harness,
+        rect.min + egui::vec2(rect.width() * 0.5, rect.height() * 0.3),
+    );
+    let pixel = harness.state().probe.pixel.expect("a pixel is probed");
+    assert_shows_the_map(&mut harness, pixel, Term::L1);
+    wait_for_app(&mut harness, "the drawn path", |app| {
+        app.probe.path.recorded.is_some()
+    });
+    harness.run_steps(2);
+    assert!(
+        harness
+            .query_by_label(HEMISPHERE_WINDOW_TITLE_AT_Q)
+            .is_none()
+    );
+    harness
+        .get_all_by_label("∫ at q")
+        .next()
+        .expect("the path's bounce from p offers the integral at q")
+        .click();
+    harness.run_steps(2);
+    let bounce = harness
+        .state()
+        .hemisphere
+        .at_q
+        .as_ref()
+        .expect("q is picked")
+        .bounce;
+    wait_for_app(&mut harness, "the last round of the map at q", |app| {
+        app.hemisphere
+            .result
+            .as_ref()
+            .is_some_and(|r| r.vertex() == Vertex::Second { bounce } && r.is_final())
+    });
+    harness.run_steps(3);
+    assert!(
+        harness
+            .query_by_label(HEMISPHERE_WINDOW_TITLE_AT_Q)
+            .is_some()
+    );
+    let computed = harness.state().hemisphere.result.clone().unwrap();
+    let outcome = computed
+        .outcome
+        .as_ref()
+        .expect("q is on a wall of the box");
+    // the map at q is the analysis' along the bounce
+    let app = harness.state();
+    let settings = RenderSettings {
+        terms: TermSet::ALL,
+        auto_indirect_samples: false,
+        ..app.state.settings.clone()
+    };
+    let context = RenderContext::with_camera(
+        std::sync::Arc::clone(&app.scene),
+        settings.clone(),
+        Some(&app.camera),
+    );
+    let last = *ROUNDS.last().unwrap();
+    let map = integrand_map(
+        &context,
+        &bounce,
+        TermSet::only(Term::L1),
+        MAP_SIZE,
+        last,
+        settings.seed,
+    )
+    .unwrap();
+    assert_eq!(outcome.map.values, map.values, "the same map at q");
+    harness.get_by_label("← back to p").click();
+    harness.run_steps(2);
+    assert!(harness.state().hemisphere.at_q.is_none());
+    assert_shows_the_map(&mut harness, pixel, Term::L1);
+    assert!(harness.query_by_label(HEMISPHERE_WINDOW_TITLE).is_some());
 }

@@ -69,6 +69,45 @@ pub fn direction_to_disk(w: Vec3) -> Vec2 {
     horizontal * r
 }
 
+/// Where the integral is taken: at p, the first hit of a pixel's centre
+/// ray, or one bounce further, at q, the second vertex of a drawn path —
+/// the lecture's nested integral, ∫_Ωp … ∫_Ωq:
+///
+/// ```text
+/// L2(p, ωo) = ∫_Ωp L1(q, −ω) f_r(p, ω → ωo) cos θ dω,
+/// L1(q, −ω) = ∫_Ωq L_e(r, −ω') f_r(q, ω' → −ω) cos θ' dω'
+/// ```
+///
+/// so the integral of L1 at q is the L_i(p, ω) of L2's integrand at p
+/// along the bounce.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Vertex {
+    /// p: the first hit of the pixel's centre ray.
+    #[default]
+    FirstHit,
+    /// q: where `bounce`, a continuation leaving p, lands first; ωo at q
+    /// points back along it, to p.
+    Second { bounce: Ray },
+}
+
+impl Vertex {
+    /// The ray whose first hit is the vertex, for pixel (`x`, `y`).
+    pub fn ray(self, context: &RenderContext, (x, y): (u32, u32)) -> Ray {
+        match self {
+            Vertex::FirstHit => context.camera.generate(x, y, Vec2::splat(0.5)),
+            Vertex::Second { bounce } => bounce,
+        }
+    }
+
+    /// Its name in the formulas: p or q.
+    pub fn name(self) -> &'static str {
+        match self {
+            Vertex::FirstHit => "p",
+            Vertex::Second { .. } => "q",
+        }
+    }
+}
+
 /// The point p a ray sees, where the integral is taken: its surface, its
 /// BRDF and its shading frame on the viewer's side.
 pub struct ShadingPoint {

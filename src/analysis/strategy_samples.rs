@@ -22,12 +22,12 @@ use crate::transport::context::RenderContext;
 use crate::transport::counts::RayCounts;
 use crate::transport::light::{Light, cone_of};
 use crate::transport::path_log::SegmentKind;
-use crate::transport::sample_pixel_logged;
 use crate::transport::surface::SurfacePoint;
 use crate::transport::warps::{UNIFORM_HEMISPHERE_PDF, cosine_hemisphere_pdf, uniform_cone_pdf};
+use crate::transport::{sample_pixel_logged, trace_logged};
 
 use super::domains::lights_along;
-use super::hemisphere::{IntegrandMap, ShadingPoint, direction_to_disk, disk_to_direction};
+use super::hemisphere::{IntegrandMap, ShadingPoint, Vertex, direction_to_disk, disk_to_direction};
 
 /// How a sample's direction was drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -116,15 +116,21 @@ impl DrawnSamples {
     }
 }
 
-/// The first `passes` samples of pixel (`x`, `y`), as the film draws them
-/// with `context` (its settings, continuations and random streams), seen
-/// from p, the first hit of the pixel's centre: the directions they take
-/// from their first hit for `term` (L1, L2 or L3+). A sample's first hit
-/// lies within the pixel's footprint around p.
+/// The first `passes` samples of pixel (`x`, `y`) at `vertex`, drawn with
+/// `context` (its settings, continuations and random streams), seen from
+/// p, the vertex's point: the directions they take from their first hit
+/// for `term` (L1, L2 or L3+).
+///
+/// At the first hit they are the film's own samples: a sample's first hit
+/// lies within the pixel's footprint around p. At a second vertex q they
+/// are samples of the estimator started along the bounce p → q (the
+/// pixel's streams, pass by pass): each estimates the term at q, sent
+/// back to p.
 pub fn drawn_samples(
     context: &RenderContext,
     p: &ShadingPoint,
     (x, y): (u32, u32),
+    vertex: Vertex,
     term: Term,
     passes: u32,
 ) -> DrawnSamples {
@@ -135,8 +141,11 @@ pub fn drawn_samples(
     for pass in 0..passes {
         let stream = sample_stream(settings, pixel, pass);
         let mut log = crate::transport::path_log::PathLog::default();
-        let radiance =
-            sample_pixel_logged(context, x, y, &stream, &mut RayCounts::default(), &mut log);
+        let counts = &mut RayCounts::default();
+        let radiance = match vertex {
+            Vertex::FirstHit => sample_pixel_logged(context, x, y, &stream, counts, &mut log),
+            Vertex::Second { bounce } => trace_logged(context, bounce, &stream, counts, &mut log),
+        };
         per_pass.push(radiance[term.index()]);
         let mut add = |direction: Vec3, strategy, value, weight, reached_light| {
             let local = p.frame.to_local(direction.normalize());

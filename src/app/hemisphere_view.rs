@@ -17,7 +17,7 @@ use glam::Vec2;
 
 use crate::analysis::domains::{DomainLabel, SourceDomains, source_domains};
 use crate::analysis::hemisphere::{
-    Factor, HemisphereError, IntegrandMap, ShadingPoint, integrand_map,
+    Factor, HemisphereError, IntegrandMap, ShadingPoint, Vertex, direction_to_disk, integrand_map,
 };
 use crate::analysis::hemisphere_colour::{ColouredMap, colour_map, colour_values};
 use crate::analysis::noise::Scale;
@@ -25,12 +25,15 @@ use crate::analysis::strategy_samples::{
     DrawnSamples, Strategy, drawn_samples, sampled_terms, strategy_density,
 };
 use crate::course::{RenderSettings, Term, TermSet};
+use crate::geometry::Ray;
 use crate::platform::threads::{self, Job};
 use crate::platform::time::Instant;
 use crate::render::progressive::{SharedScene, ViewRequest};
 use crate::scene::Camera;
 use crate::transport::context::RenderContext;
 use crate::transport::continuations::Continuations;
+
+use super::probe_view::{PickedBounce, ProbeState};
 
 mod lab_ui;
 mod map_ui;
@@ -53,6 +56,9 @@ pub const HEMISPHERE_WINDOW_ID: &str = "lumiere integral at p";
 /// The window's title.
 pub const HEMISPHERE_WINDOW_TITLE: &str = "The integral at p";
 
+/// Its title at a path's second vertex.
+pub const HEMISPHERE_WINDOW_TITLE_AT_Q: &str = "The integral at q";
+
 /// Side of the map on screen, in points.
 pub const MAP_POINTS: f32 = 260.0;
 
@@ -65,6 +71,8 @@ struct Asked {
     settings: RenderSettings,
     camera: Camera,
     pixel: (u32, u32),
+    /// p, or a second vertex q of one of the pixel's paths.
+    vertex: Vertex,
     term: Term,
 }
 
@@ -88,6 +96,11 @@ impl Computed {
         self.asked.pixel
     }
 
+    /// Where the integral is taken: p, or q one bounce further.
+    pub fn vertex(&self) -> Vertex {
+        self.asked.vertex
+    }
+
     /// Whether it is the last round's (or no map can be made).
     pub fn is_final(&self) -> bool {
         self.outcome.is_err() || self.round + 1 >= rounds()
@@ -99,9 +112,11 @@ pub struct Outcome {
     pub map: IntegrandMap,
     /// What the first round found and the later ones keep.
     pub at_point: Arc<AtPoint>,
-    /// p and its normal, in the scene.
+    /// The vertex and its normal, in the scene.
     pub point: glam::Vec3,
     pub normal: glam::Vec3,
+    /// ωo on the map: towards the camera from p, back to p from q.
+    pub outgoing: Vec2,
 }
 
 /// What does not change from round to round: the sources' domains, the
@@ -145,6 +160,9 @@ pub struct HemisphereView {
     pub samples_drawn: u32,
     /// The sampling lab's choices and outcome.
     pub lab: LabView,
+    /// The second vertex q picked in the path view, if the view is there
+    /// rather than at p.
+    pub at_q: Option<SecondVertex>,
     pub result: Option<Arc<Computed>>,
     job: Option<Job<Option<Computed>>>,
     cache: Arc<Mutex<Contexts>>,
@@ -161,12 +179,25 @@ impl Default for HemisphereView {
             samples_shown: true,
             samples_drawn: 16,
             lab: LabView::default(),
+            at_q: None,
             result: None,
             job: None,
             cache: Arc::default(),
             texture: None,
         }
     }
+}
+
+/// A second vertex q of a probed pixel's path, where the view integrates
+/// instead of p while the pixel and the camera stay.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SecondVertex {
+    pub pixel: (u32, u32),
+    pub camera: Camera,
+    /// The continuation leaving p that lands on q.
+    pub bounce: Ray,
+    /// The sample whose path it belongs to (from 1).
+    pub sample: u32,
 }
 
 /// What the texture shows.
@@ -216,7 +247,31 @@ impl HemisphereView {
         computed.is_final()
     }
 
+    /// The second vertex the view integrates at, if it is for `pixel`
+    /// seen through `camera`.
+    pub fn second_vertex(&self, pixel: (u32, u32), camera: &Camera) -> Option<&SecondVertex> {
+        self.at_q
+            .as_ref()
+            .filter(|q| q.pixel == pixel && q.camera == *camera)
+    }
+
+    /// Shows the integral at q, where `picked` (a bounce of the probed
+    /// pixel's drawn path) lands.
+    pub fn open_at_q(&mut self, probe: &ProbeState, camera: &Camera, picked: PickedBounce) {
+        let Some(pixel) = probe.pixel else { return };
+        self.shown = true;
+        self.at_q = Some(SecondVertex {
+            pixel,
+            camera: camera.clone(),
+            bounce: picked.bounce,
+            sample: picked.sample,
+        });
+    }
+
     fn asked(&self, request: &ViewRequest, pixel: (u32, u32)) -> Asked {
+        let vertex = self
+            .second_vertex(pixel, &request.camera)
+            .map_or(Vertex::FirstHit, |q| Vertex::Second { bounce: q.bounce });
         Asked {
             scene: request.scene.clone(),
             settings: RenderSettings {
@@ -226,6 +281,7 @@ impl HemisphereView {
             },
             camera: request.camera.clone(),
             pixel,
+            vertex,
             term: self.term_for(request.settings.terms),
         }
     }
@@ -340,8 +396,7 @@ fn compute(
     let mut cache = cache.lock().unwrap_or_else(|p| p.into_inner());
     let cache = &mut *cache;
     let context = fresh_context(&mut cache.map, &asked.scene, &asked.settings, &asked.camera);
-    let (x, y) = asked.pixel;
-    let ray = context.camera.generate(x, y, Vec2::splat(0.5));
+    let ray = asked.vertex.ray(context, asked.pixel);
     let terms = TermSet::only(asked.term);
     let map = integrand_map(
         context,
@@ -354,6 +409,7 @@ fn compute(
     let outcome = map.and_then(|map| {
         let p = ShadingPoint::seen(context, &ray).ok_or(HemisphereError::NoSurface)?;
         let (point, normal) = (p.point.p, p.frame.z);
+        let outgoing = direction_to_disk(p.wo_local);
         let at_point = match at_point {
             Some(at_point) => at_point,
             None => {
@@ -365,7 +421,14 @@ fn compute(
                     &asked.camera,
                 );
                 context.continuations = continuations;
-                let drawn = drawn_samples(context, &p, asked.pixel, asked.term, MOST_DRAWN_SAMPLES);
+                let drawn = drawn_samples(
+                    context,
+                    &p,
+                    asked.pixel,
+                    asked.vertex,
+                    asked.term,
+                    MOST_DRAWN_SAMPLES,
+                );
                 let density =
                     |strategy| strategy_density(context, &p, asked.term, strategy, MAP_SIZE);
                 Arc::new(AtPoint {
@@ -383,6 +446,7 @@ fn compute(
             at_point,
             point,
             normal,
+            outgoing,
         })
     });
     Computed {
@@ -412,20 +476,28 @@ fn fresh_context<'a>(
     context
 }
 
-/// The window of the integral at p, while a pixel is probed and the view is
-/// shown; `area` keeps it off a lesson's texts.
+/// The window of the integral at p (or at q, a path's second vertex),
+/// while a pixel is probed and the view is shown; `area` keeps it off a
+/// lesson's texts.
 pub fn hemisphere_window(
     ctx: &egui::Context,
     view: &mut HemisphereView,
     pixel: Option<(u32, u32)>,
-    visible: TermSet,
+    request: &ViewRequest,
     area: egui::Rect,
 ) {
     let Some((x, y)) = pixel.filter(|_| view.shown) else {
         return;
     };
+    let visible = request.settings.terms;
+    let at_q = view.second_vertex((x, y), &request.camera).cloned();
+    let title = if at_q.is_some() {
+        HEMISPHERE_WINDOW_TITLE_AT_Q
+    } else {
+        HEMISPHERE_WINDOW_TITLE
+    };
     let mut open = true;
-    egui::Window::new(HEMISPHERE_WINDOW_TITLE)
+    egui::Window::new(title)
         .id(egui::Id::unique(HEMISPHERE_WINDOW_ID))
         .open(&mut open)
         .default_pos(area.left_top() + egui::vec2(8.0, 8.0))
@@ -435,12 +507,17 @@ pub fn hemisphere_window(
         .default_height(area.height() - 16.0)
         .resizable(false)
         .show(ctx, |ui| {
+            if let Some(q) = &at_q {
+                map_ui::second_vertex_ui(ui, view, q);
+            }
             map_ui::choices_ui(ui, view, visible);
             let Some(computed) = view.result.clone() else {
                 ui.spinner();
                 return;
             };
-            if computed.asked.pixel != (x, y) {
+            if computed.asked.pixel != (x, y)
+                || computed.vertex() != view.asked(request, (x, y)).vertex
+            {
                 ui.horizontal(|ui| {
                     ui.spinner();
                     ui.label(format!("pixel ({x}, {y})"));

@@ -585,17 +585,20 @@ impl eframe::App for LumiereApp {
         self.image_rect = Some(image_rect);
         convergence::plot_window(self, &ctx);
         let windows_area = self.windows_area.unwrap_or(ctx.content_rect());
-        probe_view::probe_window(
+        if let Some(picked) = probe_view::probe_window(
             &ctx,
             &mut self.probe,
             &mut self.hemisphere.shown,
             windows_area,
-        );
+        ) {
+            self.hemisphere
+                .open_at_q(&self.probe, &self.sent.camera, picked);
+        }
         hemisphere_view::hemisphere_window(
             &ctx,
             &mut self.hemisphere,
             self.probe.pixel,
-            self.sent.settings.terms,
+            &self.sent,
             windows_area,
         );
         script::bench_step(self, &ctx, &snapshot, started);

@@ -23,6 +23,7 @@ use crate::analysis::path_view::{
 };
 use crate::analysis::probe::{FilmPixel, MAX_PROBE_SAMPLES, PixelProbe, TermProbe, trace_pixel};
 use crate::course::{LightMode, RenderSettings, Term, TermSet};
+use crate::geometry::Ray;
 use crate::platform::threads::{self, Job};
 use crate::platform::time::Instant;
 use crate::render::film::Film;
@@ -30,7 +31,7 @@ use crate::render::progressive::ViewRequest;
 use crate::scene::Scene;
 use crate::transport::context::RenderContext;
 use crate::transport::continuations::Continuations;
-use crate::transport::path_log::PathLog;
+use crate::transport::path_log::{PathLog, SegmentKind};
 
 /// Shortest time between two refreshes of the probe while the film converges.
 pub const REFRESH_INTERVAL: Duration = Duration::from_millis(500);
@@ -411,17 +412,27 @@ pub fn role_colour(role: RayRole) -> egui::Color32 {
     egui::Color32::from_rgb(r, g, b)
 }
 
+/// A bounce of the drawn path picked in the path view: the integral is
+/// to be shown at q, where it lands.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PickedBounce {
+    /// The continuation leaving p, as traced.
+    pub bounce: Ray,
+    /// The sample whose path it is (from 1).
+    pub sample: u32,
+}
+
 /// The probe's window, within `area` (off a lesson's texts); closing it
-/// ends the probe. `integral_shown` shows the integral at p beside it.
+/// ends the probe. `integral_shown` shows the integral at p beside it;
+/// what it returns is a bounce picked to show the integral at q.
 pub fn probe_window(
     ctx: &egui::Context,
     probe: &mut ProbeState,
     integral_shown: &mut bool,
     area: egui::Rect,
-) {
-    let Some((x, y)) = probe.pixel else {
-        return;
-    };
+) -> Option<PickedBounce> {
+    let (x, y) = probe.pixel?;
+    let mut picked = None;
     let mut open = true;
     egui::Window::new("Pixel probe")
         .id(egui::Id::unique(PROBE_WINDOW_ID))
@@ -460,7 +471,7 @@ pub fn probe_window(
                 egui::CollapsingHeader::new("Path of one sample")
                     .default_open(true)
                     .show(ui, |ui| {
-                        path_ui(ui, &mut probe.path, &result.probe, result.terms)
+                        picked = path_ui(ui, &mut probe.path, &result.probe, result.terms);
                     });
                 for term in &result.probe.terms {
                     term_ui(ui, term);
@@ -472,17 +483,24 @@ pub fn probe_window(
     } else {
         probe.refresh_path();
     }
+    picked
 }
 
-/// The choice of the sample whose path is drawn, and the list of its rays.
-fn path_ui(ui: &mut egui::Ui, path: &mut PathView, probe: &PixelProbe, terms: TermSet) {
+/// The choice of the sample whose path is drawn, and the list of its rays;
+/// returns a bounce from p whose "∫ at q" was clicked.
+fn path_ui(
+    ui: &mut egui::Ui,
+    path: &mut PathView,
+    probe: &PixelProbe,
+    terms: TermSet,
+) -> Option<PickedBounce> {
     let mut shown = !path.hidden;
     ui.checkbox(&mut shown, "Draw its rays on the image")
         .on_hover_text("The rays this sample traced, projected into the view, coloured by term");
     path.hidden = !shown;
     let count = probe.passes.len();
     if count == 0 {
-        return;
+        return None;
     }
     let position = path.position(probe).unwrap_or(0);
     ui.horizontal(|ui| {
@@ -516,8 +534,9 @@ fn path_ui(ui: &mut egui::Ui, path: &mut PathView, probe: &PixelProbe, terms: Te
     });
     let Some(recorded) = &path.recorded else {
         ui.spinner();
-        return;
+        return None;
     };
+    let mut picked = None;
     ui.label(
         egui::RichText::new(format!(
             "this sample's luminance: {:.4} W/(m²·sr)",
@@ -549,7 +568,25 @@ fn path_ui(ui: &mut egui::Ui, path: &mut PathView, probe: &PixelProbe, terms: Te
                         stroke,
                     );
                 }
-                ui.label(role.describe());
+                ui.horizontal(|ui| {
+                    ui.label(role.describe());
+                    // a continuation leaving p (filed under p's L1): its end is q
+                    let leaves_p = matches!(segment.kind, SegmentKind::Bounce { .. })
+                        && segment.term == Term::L1;
+                    if leaves_p
+                        && ui
+                            .small_button("∫ at q")
+                            .on_hover_text(
+                                "The integral at q, where this bounce lands: the nested integral of L2",
+                            )
+                            .clicked()
+                    {
+                        picked = Some(PickedBounce {
+                            bounce: segment.ray,
+                            sample: recorded.position as u32 + 1,
+                        });
+                    }
+                });
                 let added = segment_luminance(segment);
                 ui.label(if added > 0.0 {
                     format!("+{added:.4}")
@@ -560,6 +597,7 @@ fn path_ui(ui: &mut egui::Ui, path: &mut PathView, probe: &PixelProbe, terms: Te
                 ui.end_row();
             }
         });
+    picked
 }
 
 /// Statistics and histogram of one term of the probed pixel.

@@ -134,6 +134,20 @@ pub fn sample_pixel_logged(
     guard_sample(radiance, counts)
 }
 
+/// [`trace`] by the fast integrator, for the settings' terms, appending
+/// every ray it traces to `log`: the hemisphere view draws the estimator's
+/// samples at a path's second vertex q this way, along the bounce p → q.
+pub fn trace_logged(
+    context: &RenderContext,
+    ray: Ray,
+    stream: &SampleStream,
+    counts: &mut RayCounts,
+    log: &mut PathLog,
+) -> TermRadiance {
+    let splits = context.continuations.count;
+    fast::logged_radiance(context, ray, stream, splits, counts, log)
+}
+
 /// The chosen integrator's radiance along `ray` for `terms`, with
 /// `splits` continuations at the first hit (the fast one's); unguarded.
 fn integrate(

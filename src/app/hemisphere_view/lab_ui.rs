@@ -141,10 +141,9 @@ fn run(asked: LabAsked, cache: &Mutex<Contexts>) -> LabComputed {
         &asked.samples_settings,
         &at.camera,
     );
-    let (x, y) = at.pixel;
-    let ray = context.camera.generate(x, y, glam::Vec2::splat(0.5));
+    let ray = at.vertex.ray(context, at.pixel);
     let outcome = match ShadingPoint::seen(context, &ray) {
-        None => Err("the pixel sees no surface".to_owned()),
+        None => Err(format!("there is no surface at {}", at.vertex.name())),
         Some(p) => {
             let seed = asked.samples_settings.seed ^ asked.draw.wrapping_mul(0x9e37_79b9_7f4a_7c15);
             sampling_lab(

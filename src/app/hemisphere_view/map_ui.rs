@@ -6,14 +6,16 @@ use eframe::egui;
 use egui_plot::{HLine, Line, LineStyle, Plot, PlotPoints, Points};
 use glam::Vec2;
 
-use crate::analysis::hemisphere::{Factor, IntegrandMap, disk_to_direction};
+use crate::analysis::hemisphere::{Factor, IntegrandMap, Vertex, disk_to_direction};
 use crate::analysis::hemisphere_colour::ColouredMap;
 use crate::analysis::noise::{ColourMap, Scale, Unit, format_tick};
 use crate::analysis::strategy_samples::{DrawnSample, Strategy};
 use crate::course::color::luminance;
 use crate::course::{Term, TermSet};
 
-use super::{Computed, HemisphereView, MAP_POINTS, MOST_DRAWN_SAMPLES, MapShows, Outcome};
+use super::{
+    Computed, HemisphereView, MAP_POINTS, MOST_DRAWN_SAMPLES, MapShows, Outcome, SecondVertex,
+};
 
 /// The colour of a strategy's samples.
 pub fn strategy_colour(strategy: Strategy) -> egui::Color32 {
@@ -153,6 +155,22 @@ pub(super) fn map_ui(
             );
         }
     }
+    // ωo: where the path comes from (the camera at p, p at q)
+    let outgoing = screen(outcome.outgoing);
+    let grey = egui::Color32::from_gray(220);
+    painter.circle_stroke(outgoing, 5.0, egui::Stroke::new(1.5, grey));
+    painter.circle_filled(outgoing, 1.5, grey);
+    let towards = if computed_at_q(view) {
+        "ωo, to p"
+    } else {
+        "ωo, to the eye"
+    };
+    shadowed_text(
+        outgoing + egui::vec2(7.0, 7.0),
+        egui::Align2::LEFT_TOP,
+        towards,
+        grey,
+    );
     let drawn = &outcome.at_point.drawn;
     if view.samples_shown {
         // each sample sized by its value: the area of its dot ∝ f cos L / pdf · w
@@ -189,6 +207,41 @@ pub(super) fn map_ui(
         hover_ui(&response, pos, rect, coloured, view.shows, outcome, nearest);
     }
     colour_bar_ui(ui, coloured, view.shows);
+}
+
+/// Whether the map shown is at a second vertex q.
+fn computed_at_q(view: &HemisphereView) -> bool {
+    view.result
+        .as_ref()
+        .is_some_and(|r| matches!(r.vertex(), Vertex::Second { .. }))
+}
+
+/// At a second vertex q: where it is, how its integral nests in p's, and
+/// the way back to p.
+pub(super) fn second_vertex_ui(ui: &mut egui::Ui, view: &mut HemisphereView, q: &SecondVertex) {
+    ui.horizontal(|ui| {
+        if ui
+            .button("← back to p")
+            .on_hover_text("The integral at the pixel's first hit")
+            .clicked()
+        {
+            view.at_q = None;
+        }
+        ui.label(format!(
+            "q: where sample {}'s bounce from p lands",
+            q.sample
+        ));
+    });
+    ui.add(
+        egui::Label::new(
+            egui::RichText::new(
+                "The nested integral: L1 at q, ∫ over Ωq of Le f_r(q) cos θ' dω', is L_direct(q, −ω), \
+                 the L_i of L2's integrand at p along this bounce; L2 at q is the L_i of L3+ at p.",
+            )
+            .small(),
+        )
+        .wrap(),
+    );
 }
 
 /// The drawn sample within a few points of `pos`, if any.
@@ -344,7 +397,8 @@ pub(super) fn numbers_ui(ui: &mut egui::Ui, computed: &Computed, outcome: &Outco
         ui.add(
             egui::Label::new(
                 egui::RichText::new(format!(
-                    "p = ({:.3}, {:.3}, {:.3}) · {} direction(s) per pixel of {}² · {:.0} ms · equal-area disk, zenith at the centre",
+                    "{} = ({:.3}, {:.3}, {:.3}) · {} direction(s) per pixel of {}² · {:.0} ms · equal-area disk, zenith at the centre",
+                    computed.vertex().name(),
                     outcome.point.x,
                     outcome.point.y,
                     outcome.point.z,
@@ -371,8 +425,13 @@ pub(super) fn samples_ui(
     let drawn = &outcome.at_point.drawn;
     ui.separator();
     ui.horizontal(|ui| {
-        ui.checkbox(&mut view.samples_shown, "the film's samples")
-            .on_hover_text("The directions the render's own samples of this pixel take from p, with the same random numbers");
+        if computed.vertex() == Vertex::FirstHit {
+            ui.checkbox(&mut view.samples_shown, "the film's samples")
+                .on_hover_text("The directions the render's own samples of this pixel take from p, with the same random numbers");
+        } else {
+            ui.checkbox(&mut view.samples_shown, "the estimator's samples at q")
+                .on_hover_text("Samples of the render's estimator started along the bounce p → q (the pixel's random streams): the directions each takes from q");
+        }
         let mut n = view.samples_drawn;
         ui.add(
             egui::Slider::new(&mut n, 1..=MOST_DRAWN_SAMPLES)
