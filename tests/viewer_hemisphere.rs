@@ -52,6 +52,30 @@ fn click(harness: &mut Harness<'static, LumiereApp>, pos: egui::Pos2) {
     harness.run_steps(2);
 }
 
+/// A viewer stopped at `spp` samples per pixel, with the probe on the
+/// back wall under the light (every bounce from it stays in the box);
+/// `before` looks at the window before the click.
+fn probe_the_back_wall(
+    spp: u32,
+    before: impl FnOnce(&mut Harness<'static, LumiereApp>),
+) -> (Harness<'static, LumiereApp>, (u32, u32)) {
+    let mut harness = harness();
+    harness.state_mut().state.stop_at_spp = Some(spp);
+    wait_for(&mut harness, "the film's samples", |s| {
+        s.idle && s.samples_per_pixel() >= spp
+    });
+    before(&mut harness);
+    harness.get_by_label("Probe").click();
+    harness.run_steps(2);
+    let rect = harness.state().image_rect().expect("the image is drawn");
+    click(
+        &mut harness,
+        rect.min + egui::vec2(rect.width() * 0.5, rect.height() * 0.3),
+    );
+    let pixel = harness.state().probe.pixel.expect("a pixel is probed");
+    (harness, pixel)
+}
+
 /// The map the view shows for `term` at `pixel` is the one `analysis`
 /// computes for the pixel-centre ray, round after round up to the last.
 fn assert_shows_the_map(harness: &mut Harness<'static, LumiereApp>, pixel: (u32, u32), term: Term) {
@@ -99,20 +123,9 @@ fn luminance_sum(values: &[Vec3]) -> f32 {
 
 #[test]
 fn a_probe_click_opens_the_integral_at_p_for_the_term_asked() {
-    let mut harness = harness();
-    harness.state_mut().state.stop_at_spp = Some(4);
-    wait_for(&mut harness, "4 spp", |s| {
-        s.idle && s.samples_per_pixel() >= 4
+    let (mut harness, pixel) = probe_the_back_wall(4, |harness| {
+        assert!(harness.query_by_label(HEMISPHERE_WINDOW_TITLE).is_none());
     });
-    assert!(harness.query_by_label(HEMISPHERE_WINDOW_TITLE).is_none());
-    harness.get_by_label("Probe").click();
-    harness.run_steps(2);
-    let rect = harness.state().image_rect().expect("the image is drawn");
-    click(
-        &mut harness,
-        rect.min + egui::vec2(rect.width() * 0.5, rect.height() * 0.3),
-    );
-    let pixel = harness.state().probe.pixel.expect("a pixel is probed");
     // L0, L1 and L2 are shown: the view integrates L1, the lowest integral term
     assert_shows_the_map(&mut harness, pixel, Term::L1);
     let domains = harness
@@ -248,20 +261,7 @@ fn a_lesson_steps_probe_opens_the_view_beside_its_texts() {
 fn the_sampling_lab_accepts_the_strategys_density_and_rejects_a_wrong_one() {
     use lumiere::analysis::sampling_lab::Against;
     use lumiere::analysis::strategy_samples::Strategy;
-    let mut harness = harness();
-    harness.state_mut().state.stop_at_spp = Some(1);
-    wait_for(&mut harness, "1 spp", |s| {
-        s.idle && s.samples_per_pixel() >= 1
-    });
-    harness.get_by_label("Probe").click();
-    harness.run_steps(2);
-    let rect = harness.state().image_rect().expect("the image is drawn");
-    // the back wall, under the light
-    click(
-        &mut harness,
-        rect.min + egui::vec2(rect.width() * 0.5, rect.height() * 0.3),
-    );
-    let pixel = harness.state().probe.pixel.expect("a pixel is probed");
+    let (mut harness, pixel) = probe_the_back_wall(1, |_| {});
     assert_shows_the_map(&mut harness, pixel, Term::L1);
     let verdict = |harness: &mut Harness<'static, LumiereApp>, against: Against| {
         let lab = &mut harness.state_mut().hemisphere.lab;
@@ -302,20 +302,7 @@ fn the_sampling_lab_accepts_the_strategys_density_and_rejects_a_wrong_one() {
 #[test]
 fn the_path_view_opens_the_integral_at_q() {
     use lumiere::app::hemisphere_view::HEMISPHERE_WINDOW_TITLE_AT_Q;
-    let mut harness = harness();
-    harness.state_mut().state.stop_at_spp = Some(2);
-    wait_for(&mut harness, "2 spp", |s| {
-        s.idle && s.samples_per_pixel() >= 2
-    });
-    harness.get_by_label("Probe").click();
-    harness.run_steps(2);
-    let rect = harness.state().image_rect().expect("the image is drawn");
-    // the back wall: every bounce from it stays in the box
-    click(
-        &mut harness,
-        rect.min + egui::vec2(rect.width() * 0.5, rect.height() * 0.3),
-    );
-    let pixel = harness.state().probe.pixel.expect("a pixel is probed");
+    let (mut harness, pixel) = probe_the_back_wall(2, |_| {});
     assert_shows_the_map(&mut harness, pixel, Term::L1);
     wait_for_app(&mut harness, "the drawn path", |app| {
         app.probe.path.recorded.is_some()

@@ -268,10 +268,14 @@ impl HemisphereView {
         });
     }
 
+    /// Where the integral is taken for `pixel` seen through `camera`.
+    fn vertex(&self, pixel: (u32, u32), camera: &Camera) -> Vertex {
+        self.second_vertex(pixel, camera)
+            .map_or(Vertex::FirstHit, |q| Vertex::Second { bounce: q.bounce })
+    }
+
     fn asked(&self, request: &ViewRequest, pixel: (u32, u32)) -> Asked {
-        let vertex = self
-            .second_vertex(pixel, &request.camera)
-            .map_or(Vertex::FirstHit, |q| Vertex::Second { bounce: q.bounce });
+        let vertex = self.vertex(pixel, &request.camera);
         Asked {
             scene: request.scene.clone(),
             settings: RenderSettings {
@@ -491,6 +495,7 @@ pub fn hemisphere_window(
     };
     let visible = request.settings.terms;
     let at_q = view.second_vertex((x, y), &request.camera).cloned();
+    let vertex = view.vertex((x, y), &request.camera);
     let title = if at_q.is_some() {
         HEMISPHERE_WINDOW_TITLE_AT_Q
     } else {
@@ -515,9 +520,7 @@ pub fn hemisphere_window(
                 ui.spinner();
                 return;
             };
-            if computed.asked.pixel != (x, y)
-                || computed.vertex() != view.asked(request, (x, y)).vertex
-            {
+            if computed.asked.pixel != (x, y) || computed.vertex() != vertex {
                 ui.horizontal(|ui| {
                     ui.spinner();
                     ui.label(format!("pixel ({x}, {y})"));
